@@ -1,0 +1,377 @@
+#include "config/case.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <numbers>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+namespace snapjump::config {
+namespace {
+
+using units::Dimension;
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+constexpr KeySpec kKeys[] = {
+    {"shell", "R", "R", Dimension::Length, true, std::nullopt, "", "mid-surface radius of curvature"},
+    {"shell", "h", "h", Dimension::Length, true, std::nullopt, "", "shell thickness"},
+    {"shell", "phi", "phi", Dimension::Angle, false, 80.0 * kDeg, "80 deg",
+     "polar angle of the rim, measured from the apex"},
+    {"material", "E", "E", Dimension::Pressure, true, std::nullopt, "", "Young's modulus"},
+    {"material", "nu", "nu", Dimension::Dimensionless, false, 0.45, "0.45", "Poisson's ratio"},
+    {"material", "rho", "rho", Dimension::Density, false, 1160.0, "1160 kg/m^3", "density"},
+    {"popper", "net_weight", "net-weight", Dimension::Force, true, std::nullopt, "",
+     "net weight mg: container + shell - counterweight"},
+    {"popper", "moving_mass", "moving-mass", Dimension::Mass, false, std::nullopt,
+     "net_weight / g", "inertia of container + shell + counterweight"},
+    {"friction", "mu", "mu", Dimension::Dimensionless, false, 0.3, "0.3",
+     "Coulomb friction coefficient between shell and plate"},
+    {"gas", "container_volume", "container-volume", Dimension::Volume, false, 200e-6, "200 mL",
+     "volume of the rigid container above the rim plane"},
+    {"gas", "p0", "p0", Dimension::Pressure, false, 101325.0, "101325 Pa", "atmospheric pressure"},
+    {"gas", "alpha_n", "alpha-n", Dimension::ValveAcceleration, false, 1.0e-3,
+     "1.0e-3 Pa^-1 s^-2", "valve law: d2Jn/dt2 = -alpha_n delta_p"},
+    {"gas", "beta_n", "beta-n", Dimension::ValveRate, false, 5.0e-5, "5.0e-5 Pa^-1 s^-1",
+     "valve law: dJn/dt(0) = -beta_n delta_p(0)"},
+    {"protocol", "delta_p_j", "delta-p-j", Dimension::Pressure, false, std::nullopt, "",
+     "pressure difference (outside - inside) at release"},
+    {"protocol", "delta_p_j_over_pc", "delta-p-j-over-pc", Dimension::Dimensionless, false, 0.5,
+     "0.5", "delta_p_j as a fraction of Zoelly's p_c (when delta_p_j is not given)"},
+    {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "",
+     "target mesh element size (from the resolution preset when absent)"},
+    {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "",
+     "simulated time after release (until the apex of the flight when absent)"},
+};
+
+// Keys that are not scalar quantities.
+constexpr std::string_view kResolutionKey = "resolution";
+constexpr std::string_view kLayersKey = "elements_through_thickness";
+constexpr std::string_view kTitleKey = "title";
+
+constexpr std::string_view kDefaultCase = R"(# The paper's Fig. 2(a) popper: (R, h) = (30, 2.0) mm, mg = 0.48 N.
+title = "Fig. 2(a) popper, (R, h) = (30, 2.0) mm, mg = 0.48 N"
+
+[shell]
+R = "30 mm"
+h = "2.0 mm"
+phi = "80 deg"
+
+[material]
+E = "1.2 MPa"
+
+[popper]
+net_weight = "0.48 N"
+)";
+
+struct Entry {
+  double si = 0.0;
+  std::string text;    // as the user wrote it, for messages
+  std::string origin;  // "case.toml:3" or "--R"
+};
+
+std::string full_key(const KeySpec& k) { return fmt::format("{}.{}", k.table, k.name); }
+
+const KeySpec* find_key(std::string_view table, std::string_view name) {
+  for (const auto& k : kKeys) {
+    if (k.table == table && k.name == name) return &k;
+  }
+  return nullptr;
+}
+
+const KeySpec& spec(std::string_view table, std::string_view name) {
+  const auto* k = find_key(table, name);
+  if (k == nullptr) throw std::logic_error("unknown case key");
+  return *k;
+}
+
+bool known_table(std::string_view table) {
+  return std::any_of(std::begin(kKeys), std::end(kKeys),
+                     [&](const KeySpec& k) { return k.table == table; });
+}
+
+std::string keys_of(std::string_view table) {
+  std::string out;
+  for (const auto& k : kKeys) {
+    if (k.table != table) continue;
+    if (!out.empty()) out += ", ";
+    out += k.name;
+  }
+  if (table == "numerics") out += fmt::format(", {}, {}", kResolutionKey, kLayersKey);
+  return out;
+}
+
+std::string tables() {
+  std::string out;
+  for (const auto& k : kKeys) {
+    const auto t = fmt::format("[{}]", k.table);
+    if (out.find(t) == std::string::npos) out += (out.empty() ? "" : ", ") + t;
+  }
+  return out;
+}
+
+std::string at(std::string_view source, const toml::source_region& region) {
+  if (region.begin.line == 0) return std::string(source);
+  return fmt::format("{}:{}", source, region.begin.line);
+}
+
+class Reader {
+ public:
+  Reader(std::string_view source, const units::UnitParser& parser)
+      : source_(source), parser_(parser) {}
+
+  void read_document(const toml::table& doc, Case& c) {
+    for (auto&& [key, node] : doc) {
+      const auto name = key.str();
+      if (name == kTitleKey) {
+        const auto* s = node.as_string();
+        if (s == nullptr) fail(node.source(), "title must be a string");
+        c.title = s->get();
+        continue;
+      }
+      const auto* table = node.as_table();
+      if (table == nullptr || !known_table(name)) {
+        fail(key.source(), fmt::format("unknown {} '{}'; a case file has {} and a title",
+                                       table ? "table" : "key", name, tables()));
+      }
+      read_table(name, *table, c);
+    }
+  }
+
+  void apply(const Override& o) {
+    const auto dot = o.key.find('.');
+    const auto* k = dot == std::string::npos
+                        ? nullptr
+                        : find_key(std::string_view(o.key).substr(0, dot),
+                                   std::string_view(o.key).substr(dot + 1));
+    if (k == nullptr) throw CaseError(fmt::format("{}: unknown case key '{}'", o.origin, o.key));
+    entries_[full_key(*k)] = Entry{convert(*k, o.text, o.origin), o.text, o.origin};
+  }
+
+  [[nodiscard]] const Entry* find(const KeySpec& k) const {
+    const auto it = entries_.find(full_key(k));
+    return it == entries_.end() ? nullptr : &it->second;
+  }
+
+  // The value of `k`, or its default (recorded in defaults_used), or nullopt.
+  std::optional<double> value(const KeySpec& k, Case& c) const {
+    if (const auto* e = find(k)) return e->si;
+    if (k.required) {
+      throw CaseError(fmt::format(
+          "{}: missing required value {} ({}, {}, e.g. \"{}\"); add it under [{}]", source_,
+          full_key(k), k.help, units::dimension_name(k.dimension), units::example(k.dimension),
+          k.table));
+    }
+    if (k.default_si) c.defaults_used.push_back(fmt::format("{} = {}", full_key(k), k.default_text));
+    return k.default_si;
+  }
+
+  // "case.toml:4: shell.h = "35 mm"" for messages about a value.
+  [[nodiscard]] std::string where(const KeySpec& k) const {
+    if (const auto* e = find(k)) return fmt::format("{}: {} = {}", e->origin, full_key(k), e->text);
+    return fmt::format("{}: {} (default {})", source_, full_key(k), k.default_text);
+  }
+
+  [[noreturn]] void fail(const toml::source_region& region, const std::string& what) const {
+    throw CaseError(fmt::format("{}: {}", at(source_, region), what));
+  }
+
+ private:
+  void read_table(std::string_view table_name, const toml::table& table, Case& c) {
+    for (auto&& [key, node] : table) {
+      const auto name = key.str();
+      const auto origin = at(source_, key.source());
+      if (table_name == "numerics" && name == kResolutionKey) {
+        const auto* s = node.as_string();
+        const std::string v = s ? s->get() : "";
+        if (v == "coarse") c.numerics.resolution = Resolution::Coarse;
+        else if (v == "default") c.numerics.resolution = Resolution::Default;
+        else if (v == "fine") c.numerics.resolution = Resolution::Fine;
+        else fail(key.source(), "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
+        continue;
+      }
+      if (table_name == "numerics" && name == kLayersKey) {
+        const auto* i = node.as_integer();
+        if (i == nullptr || i->get() < 1 || i->get() > 16) {
+          fail(key.source(), "numerics.elements_through_thickness must be an integer from 1 to 16");
+        }
+        c.numerics.elements_through_thickness = static_cast<int>(i->get());
+        continue;
+      }
+      const auto* k = find_key(table_name, name);
+      if (k == nullptr) {
+        fail(key.source(), fmt::format("unknown key '{}' in [{}]; it takes {}", name, table_name,
+                                       keys_of(table_name)));
+      }
+      std::string text;
+      double si = 0.0;
+      if (const auto* s = node.as_string()) {
+        text = fmt::format("\"{}\"", s->get());
+        si = convert(*k, s->get(), origin);
+      } else if (const auto* i = node.as_integer()) {
+        text = fmt::format("{}", i->get());
+        si = convert(*k, text, origin);
+      } else if (const auto* f = node.as_floating_point()) {
+        text = fmt::format("{}", f->get());
+        if (!std::isfinite(f->get())) {
+          fail(key.source(), fmt::format("{} = {} is not a finite number", full_key(*k), text));
+        }
+        si = convert(*k, text, origin);
+      } else {
+        fail(key.source(), fmt::format("{} must be a number or a string with a unit (e.g. \"{}\")",
+                                       full_key(*k), units::example(k->dimension)));
+      }
+      entries_[full_key(*k)] = Entry{si, text, origin};
+    }
+  }
+
+  double convert(const KeySpec& k, std::string_view text, std::string_view origin) const {
+    try {
+      return parser_.parse(text, k.dimension);
+    } catch (const units::UnitError& e) {
+      throw CaseError(fmt::format("{}: {}: {}", origin, full_key(k), e.what()));
+    }
+  }
+
+  std::string source_;
+  const units::UnitParser& parser_;
+  std::map<std::string, Entry> entries_;
+};
+
+void check(bool ok, const std::string& message) {
+  if (!ok) throw CaseError(message);
+}
+
+Case build(const Reader& r, Case c) {
+  const auto get = [&](std::string_view t, std::string_view n) {
+    return r.value(spec(t, n), c);
+  };
+  const auto positive = [&](std::string_view t, std::string_view n, double v) {
+    check(v > 0.0, fmt::format("{} must be positive", r.where(spec(t, n))));
+  };
+
+  c.shell.R = *get("shell", "R");
+  c.shell.h = *get("shell", "h");
+  c.shell.phi = *get("shell", "phi");
+  c.material.E = *get("material", "E");
+  c.material.nu = *get("material", "nu");
+  c.material.rho = *get("material", "rho");
+  c.popper.net_weight = *get("popper", "net_weight");
+  const auto moving_mass = get("popper", "moving_mass");
+  c.friction.mu = *get("friction", "mu");
+  c.gas.container_volume = *get("gas", "container_volume");
+  c.gas.p0 = *get("gas", "p0");
+  c.gas.alpha_n = *get("gas", "alpha_n");
+  c.gas.beta_n = *get("gas", "beta_n");
+  const auto* dpj = r.find(spec("protocol", "delta_p_j"));
+  const auto* dpj_ratio = r.find(spec("protocol", "delta_p_j_over_pc"));
+  if (dpj != nullptr && dpj_ratio != nullptr) {
+    throw CaseError(fmt::format("{}: give protocol.delta_p_j or protocol.delta_p_j_over_pc, not both",
+                                dpj->origin));
+  }
+  if (dpj != nullptr) {
+    c.protocol.delta_p_j = dpj->si;
+  } else {
+    c.protocol.delta_p_j_over_pc = *get("protocol", "delta_p_j_over_pc");
+  }
+  if (const auto* e = r.find(spec("numerics", "element_size"))) c.numerics.element_size = e->si;
+  if (const auto* e = r.find(spec("numerics", "end_time"))) c.numerics.end_time = e->si;
+
+  // Physical admissibility, each message naming the key.
+  positive("shell", "R", c.shell.R);
+  positive("shell", "h", c.shell.h);
+  check(c.shell.h < c.shell.R, fmt::format("{} must be smaller than shell.R ({} m)",
+                                           r.where(spec("shell", "h")), c.shell.R));
+  check(c.shell.phi > 0.0 && c.shell.phi < std::numbers::pi,
+        fmt::format("{} must lie strictly between 0 and 180 deg (a bare number is in radians: "
+                    "write \"80 deg\" for degrees)",
+                    r.where(spec("shell", "phi"))));
+  positive("material", "E", c.material.E);
+  // nu = 1/2 (incompressible) is admitted: the shell theory holds there. The compressible
+  // neo-Hookean body of the simulator needs nu < 1/2 and says so itself.
+  check(c.material.nu > -1.0 && c.material.nu <= 0.5,
+        fmt::format("{} must lie in (-1, 0.5]", r.where(spec("material", "nu"))));
+  positive("material", "rho", c.material.rho);
+  positive("popper", "net_weight", c.popper.net_weight);
+  c.popper.moving_mass = moving_mass.value_or(c.popper.net_weight / kStandardGravity);
+  if (!moving_mass) c.defaults_used.push_back("popper.moving_mass = net_weight / g");
+  if (moving_mass) {
+    positive("popper", "moving_mass", *moving_mass);
+    check(*moving_mass * kStandardGravity >= c.popper.net_weight * (1.0 - 1e-12),
+          fmt::format("{} must be at least net_weight / g = {:.6g} kg (a counterweight adds "
+                      "inertia, it cannot remove it)",
+                      r.where(spec("popper", "moving_mass")),
+                      c.popper.net_weight / kStandardGravity));
+  }
+  check(c.friction.mu >= 0.0,
+        fmt::format("{} must not be negative", r.where(spec("friction", "mu"))));
+  positive("gas", "container_volume", c.gas.container_volume);
+  positive("gas", "p0", c.gas.p0);
+  positive("gas", "alpha_n", c.gas.alpha_n);
+  check(c.gas.beta_n >= 0.0,
+        fmt::format("{} must not be negative", r.where(spec("gas", "beta_n"))));
+  if (c.protocol.delta_p_j) {
+    check(*c.protocol.delta_p_j >= 0.0 && *c.protocol.delta_p_j < c.gas.p0,
+          fmt::format("{} must lie in [0, p0): it is how far the inside is below atmosphere",
+                      r.where(spec("protocol", "delta_p_j"))));
+  } else {
+    check(c.protocol.delta_p_j_over_pc >= 0.0,
+          fmt::format("{} must not be negative", r.where(spec("protocol", "delta_p_j_over_pc"))));
+  }
+  if (c.numerics.element_size) positive("numerics", "element_size", *c.numerics.element_size);
+  if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
+  return c;
+}
+
+}  // namespace
+
+std::string_view to_string(Resolution r) {
+  switch (r) {
+    case Resolution::Coarse: return "coarse";
+    case Resolution::Default: return "default";
+    case Resolution::Fine: return "fine";
+  }
+  return "default";
+}
+
+std::span<const KeySpec> quantity_keys() { return kKeys; }
+
+std::string_view default_case_text() { return kDefaultCase; }
+
+Case parse_case(std::string_view toml_text, std::string_view source,
+                std::span<const Override> overrides, const units::UnitParser* parser) {
+  std::optional<units::UnitParser> own;
+  if (parser == nullptr) parser = &own.emplace();
+  toml::table doc;
+  try {
+    doc = toml::parse(toml_text, source);
+  } catch (const toml::parse_error& e) {
+    throw CaseError(fmt::format("{}:{}:{}: not valid TOML: {}", source, e.source().begin.line,
+                                e.source().begin.column, e.description()));
+  }
+  Case c;
+  c.source = std::string(source);
+  Reader reader(source, *parser);
+  reader.read_document(doc, c);
+  for (const auto& o : overrides) reader.apply(o);
+  return build(reader, std::move(c));
+}
+
+Case load_case_file(const std::filesystem::path& path, std::span<const Override> overrides,
+                    const units::UnitParser* parser) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw CaseError(fmt::format("{}: cannot open the case file", path.string()));
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_case(text.str(), path.string(), overrides, parser);
+}
+
+Case default_case(std::span<const Override> overrides, const units::UnitParser* parser) {
+  return parse_case(kDefaultCase, "built-in default case", overrides, parser);
+}
+
+}  // namespace snapjump::config

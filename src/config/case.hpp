@@ -1,0 +1,125 @@
+// A popper "case": everything that describes one simulated or predicted experiment, in SI.
+//
+// Read from a TOML case file (see README.md, "Case files") and/or command-line overrides, checked
+// once here so that every later stage can trust it. Any error names the key, where it came from
+// (file and line, or the flag), and what was expected.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "config/units.hpp"
+
+namespace snapjump::config {
+
+inline constexpr double kStandardGravity = 9.80665;  // m/s^2
+
+struct Shell {
+  double R = 0.0;    // mid-surface radius of curvature [m]
+  double h = 0.0;    // thickness [m]
+  double phi = 0.0;  // polar angle of the rim, from the apex [rad]
+};
+
+struct Material {
+  double E = 0.0;    // Young's modulus [Pa]
+  double nu = 0.0;   // Poisson's ratio [-]
+  double rho = 0.0;  // density [kg/m^3]
+};
+
+struct Popper {
+  double net_weight = 0.0;   // the paper's mg: weight of container + shell - counterweight [N]
+  double moving_mass = 0.0;  // inertia of container + shell + counterweight [kg]
+};
+
+struct Friction {
+  double mu = 0.0;  // Coulomb coefficient between shell and plate [-]
+};
+
+struct Gas {
+  double container_volume = 0.0;  // rigid container volume above the rim plane [m^3]
+  double p0 = 0.0;                // atmospheric pressure [Pa]
+  double alpha_n = 0.0;           // valve law d2Jn/dt2 = -alpha_n dp [1/(Pa s^2)]
+  double beta_n = 0.0;            // valve law dJn/dt(0) = -beta_n dp(0) [1/(Pa s)]
+};
+
+// The pressure difference (outside minus inside) held at release, either absolute or as a
+// fraction of Zoelly's buckling pressure p_c of the case (resolved by the theory library).
+struct Protocol {
+  std::optional<double> delta_p_j;  // [Pa], when given absolutely
+  double delta_p_j_over_pc = 0.0;   // used when delta_p_j is not given
+};
+
+enum class Resolution { Coarse, Default, Fine };
+std::string_view to_string(Resolution r);
+
+struct Numerics {
+  Resolution resolution = Resolution::Default;
+  std::optional<double> element_size;  // [m]; from the resolution preset when absent
+  int elements_through_thickness = 2;  // quadratic elements across h
+  std::optional<double> end_time;      // [s]; until the apex of the flight when absent
+};
+
+struct Case {
+  std::string title;
+  Shell shell;
+  Material material;
+  Popper popper;
+  Friction friction;
+  Gas gas;
+  Protocol protocol;
+  Numerics numerics;
+  std::string source;                      // the file, or "built-in default case"
+  std::vector<std::string> defaults_used;  // "material.nu = 0.45", one per defaulted key
+};
+
+// Bad input. what() is the whole message, naming the key and where it was written.
+class CaseError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A value given outside the file, e.g. on the command line: key "shell.R", text "30mm",
+// origin "--R" (used in messages).
+struct Override {
+  std::string key;
+  std::string text;
+  std::string origin;
+};
+
+// One scalar key of the case format: where it lives, its dimension, its default.
+struct KeySpec {
+  std::string_view table;  // "shell"
+  std::string_view name;   // "R"
+  std::string_view flag;   // "R" for --R
+  units::Dimension dimension;
+  bool required;                     // must be in a case file
+  std::optional<double> default_si;  // used when absent and not required
+  std::string_view default_text;     // how the default is shown ("0.45", "80 deg")
+  std::string_view help;
+};
+
+// All scalar keys of the case format, in the order of the documentation.
+std::span<const KeySpec> quantity_keys();
+
+// Reads and checks a case file. Throws CaseError.
+Case load_case_file(const std::filesystem::path& path, std::span<const Override> overrides = {},
+                    const units::UnitParser* parser = nullptr);
+
+// Parses case text; `source` names it in messages. Throws CaseError.
+Case parse_case(std::string_view toml_text, std::string_view source,
+                std::span<const Override> overrides = {},
+                const units::UnitParser* parser = nullptr);
+
+// The paper's Fig. 2(a) popper, (R, h) = (30, 2.0) mm, mg = 0.48 N, with overrides applied.
+Case default_case(std::span<const Override> overrides = {},
+                  const units::UnitParser* parser = nullptr);
+
+// The text of the built-in default case (the same as examples/default.toml).
+std::string_view default_case_text();
+
+}  // namespace snapjump::config

@@ -1,0 +1,133 @@
+#include "app/cli.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace snapjump::app {
+namespace {
+
+struct Result {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+Result run(std::vector<std::string> args) {
+  args.insert(args.begin(), "snapjump");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  Result r;
+  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
+  r.out = out.str();
+  r.err = err.str();
+  return r;
+}
+
+std::string example(const std::string& name) {
+  return (std::filesystem::path(SNAPJUMP_SOURCE_DIR) / "examples" / name).string();
+}
+
+TEST(Cli, HelpTellsWhatToType) {
+  const auto top = run({"--help"});
+  EXPECT_EQ(top.code, kExitOk);
+  EXPECT_NE(top.out.find("predict"), std::string::npos);
+  const auto sub = run({"predict", "--help"});
+  EXPECT_EQ(sub.code, kExitOk);
+  EXPECT_NE(sub.out.find("--net-weight"), std::string::npos);
+  EXPECT_NE(sub.out.find("--format"), std::string::npos);
+}
+
+TEST(Cli, NoSubcommandIsAnError) {
+  const auto r = run({});
+  EXPECT_EQ(r.code, kExitBadInput);
+}
+
+TEST(Cli, PredictDefaultCaseTable) {
+  const auto r = run({"predict"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("predicted outcome: Jump"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("defaults used"), std::string::npos);
+  EXPECT_NE(r.out.find("material.nu = 0.45"), std::string::npos);
+  EXPECT_NE(r.out.find("F*  peak plate force"), std::string::npos);
+}
+
+TEST(Cli, PredictJsonIsMachineReadableSI) {
+  const auto r = run({"predict", "--format", "json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["units"], "SI");
+  EXPECT_NEAR(doc["quantities"]["F_c"]["lower"].get<double>(), 0.32, 1e-12);
+  EXPECT_EQ(doc["quantities"]["F_c"]["unit"], "N");
+  EXPECT_LT(doc["quantities"]["F_star"]["lower"].get<double>(),
+            doc["quantities"]["F_star"]["upper"].get<double>());
+  EXPECT_EQ(doc["outcome_text"], "Jump");
+}
+
+TEST(Cli, PredictCsv) {
+  const auto r = run({"predict", "--format", "csv"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_EQ(r.out.rfind("quantity,lower,upper,unit\n", 0), 0u);
+  EXPECT_NE(r.out.find("\nr_c,0.007745966692,0.007745966692,m\n"), std::string::npos) << r.out;
+}
+
+TEST(Cli, FlagsWithUnitsOverrideTheCase) {
+  const auto r = run({"predict", "--R", "25mm", "--h", "2.5 mm", "--nu", "0.5", "--format",
+                      "json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_DOUBLE_EQ(doc["case"]["R"].get<double>(), 0.025);
+  // F_c = 1.2e6 * (2.5e-3)^3 / 0.025 = 0.75 N
+  EXPECT_NEAR(doc["quantities"]["F_c"]["lower"].get<double>(), 0.75, 1e-12);
+}
+
+TEST(Cli, PredictFromCaseFile) {
+  const auto r = run({"predict", example("R30_h1.0.toml"), "--format", "json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_DOUBLE_EQ(doc["case"]["h"].get<double>(), 0.001);
+}
+
+TEST(Cli, BadFlagValueNamesTheFlag) {
+  const auto r = run({"predict", "--R", "30kg"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("--R"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("is a mass, but a length is needed"), std::string::npos) << r.err;
+}
+
+TEST(Cli, UnphysicalFlagIsRejected) {
+  const auto r = run({"predict", "--h", "40mm"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("must be smaller than shell.R"), std::string::npos) << r.err;
+}
+
+TEST(Cli, BadCaseFileNamesTheLine) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_test";
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "bad.toml";
+  std::ofstream(path) << "[shell]\nR = \"30 mm\"\nh = \"2 mm\"\ncolour = \"red\"\n";
+  const auto r = run({"predict", path.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("bad.toml:4"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unknown key 'colour'"), std::string::npos) << r.err;
+}
+
+TEST(Cli, MissingCaseFile) {
+  const auto r = run({"predict", "/nonexistent/case.toml"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_FALSE(r.err.empty());
+}
+
+TEST(Cli, UnknownFormat) {
+  const auto r = run({"predict", "--format", "xml"});
+  EXPECT_EQ(r.code, kExitBadInput);
+}
+
+}  // namespace
+}  // namespace snapjump::app

@@ -1,0 +1,250 @@
+#include "config/case.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace snapjump::config {
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// A valid minimal case; tests edit one line at a time.
+const std::string kMinimal = R"([shell]
+R = "30 mm"
+h = "2 mm"
+
+[material]
+E = "1.2 MPa"
+
+[popper]
+net_weight = "0.48 N"
+)";
+
+std::string replace(std::string text, const std::string& from, const std::string& to) {
+  const auto pos = text.find(from);
+  if (pos == std::string::npos) throw std::logic_error("test edits a line that is not there");
+  return text.replace(pos, from.size(), to);
+}
+
+// Expects a CaseError whose message contains every fragment.
+void expect_error(const std::string& text, const std::vector<std::string>& fragments,
+                  const std::vector<Override>& overrides = {}) {
+  try {
+    (void)parse_case(text, "case.toml", overrides);
+    FAIL() << "expected an error for:\n" << text;
+  } catch (const CaseError& e) {
+    const std::string msg = e.what();
+    for (const auto& f : fragments) {
+      EXPECT_NE(msg.find(f), std::string::npos) << "message: " << msg << "\nlacks: " << f;
+    }
+  }
+}
+
+TEST(CaseFile, MinimalCaseInSI) {
+  const auto c = parse_case(kMinimal, "case.toml");
+  EXPECT_DOUBLE_EQ(c.shell.R, 0.030);
+  EXPECT_DOUBLE_EQ(c.shell.h, 0.002);
+  EXPECT_DOUBLE_EQ(c.material.E, 1.2e6);
+  EXPECT_DOUBLE_EQ(c.popper.net_weight, 0.48);
+}
+
+TEST(CaseFile, DefaultsFromTheSimulationGuide) {
+  const auto c = parse_case(kMinimal, "case.toml");
+  EXPECT_NEAR(c.shell.phi, 80.0 * kDeg, 1e-15);
+  EXPECT_DOUBLE_EQ(c.material.nu, 0.45);
+  EXPECT_DOUBLE_EQ(c.material.rho, 1160.0);
+  EXPECT_DOUBLE_EQ(c.friction.mu, 0.3);
+  EXPECT_NEAR(c.gas.container_volume, 200e-6, 1e-18);
+  EXPECT_DOUBLE_EQ(c.gas.p0, 101325.0);
+  EXPECT_DOUBLE_EQ(c.gas.alpha_n, 1.0e-3);
+  EXPECT_DOUBLE_EQ(c.gas.beta_n, 5.0e-5);
+  // moving mass defaults to the net weight over standard gravity: 0.48 / 9.80665 kg
+  EXPECT_NEAR(c.popper.moving_mass, 0.048946378, 1e-9);
+  EXPECT_FALSE(c.protocol.delta_p_j.has_value());
+  EXPECT_DOUBLE_EQ(c.protocol.delta_p_j_over_pc, 0.5);
+  // The program says which defaults it used.
+  const auto has = [&](const std::string& s) {
+    return std::find(c.defaults_used.begin(), c.defaults_used.end(), s) != c.defaults_used.end();
+  };
+  EXPECT_TRUE(has("material.nu = 0.45"));
+  EXPECT_TRUE(has("shell.phi = 80 deg"));
+  EXPECT_TRUE(has("friction.mu = 0.3"));
+  EXPECT_TRUE(has("popper.moving_mass = net_weight / g"));
+  EXPECT_FALSE(has("shell.R = "));
+}
+
+TEST(CaseFile, EveryTableWithUnits) {
+  const std::string text = R"(title = "all keys"
+[shell]
+R = 0.025
+h = "2.5 mm"
+phi = "90 deg"
+[material]
+E = 1200000
+nu = 0.49
+rho = "1.1 g/cm^3"
+[popper]
+net_weight = "300 mN"
+moving_mass = "60 g"
+[friction]
+mu = 0
+[gas]
+container_volume = "0.1 L"
+p0 = "100 kPa"
+alpha_n = "2e-3 Pa^-1 s^-2"
+beta_n = "1e-5 Pa^-1 s^-1"
+[protocol]
+delta_p_j = "4 kPa"
+[numerics]
+resolution = "coarse"
+element_size = "1 mm"
+elements_through_thickness = 3
+end_time = "0.5 s"
+)";
+  const auto c = parse_case(text, "all.toml");
+  EXPECT_EQ(c.title, "all keys");
+  EXPECT_DOUBLE_EQ(c.shell.R, 0.025);
+  EXPECT_DOUBLE_EQ(c.shell.h, 0.0025);
+  EXPECT_NEAR(c.shell.phi, std::numbers::pi / 2, 1e-15);
+  EXPECT_DOUBLE_EQ(c.material.E, 1.2e6);
+  EXPECT_DOUBLE_EQ(c.material.nu, 0.49);
+  EXPECT_NEAR(c.material.rho, 1100.0, 1e-9);
+  EXPECT_NEAR(c.popper.net_weight, 0.3, 1e-15);
+  EXPECT_NEAR(c.popper.moving_mass, 0.06, 1e-15);
+  EXPECT_DOUBLE_EQ(c.friction.mu, 0.0);
+  EXPECT_NEAR(c.gas.container_volume, 1e-4, 1e-18);
+  EXPECT_DOUBLE_EQ(c.gas.p0, 1e5);
+  EXPECT_DOUBLE_EQ(c.gas.alpha_n, 2e-3);
+  EXPECT_DOUBLE_EQ(c.gas.beta_n, 1e-5);
+  ASSERT_TRUE(c.protocol.delta_p_j.has_value());
+  EXPECT_DOUBLE_EQ(*c.protocol.delta_p_j, 4000.0);
+  EXPECT_EQ(c.numerics.resolution, Resolution::Coarse);
+  EXPECT_DOUBLE_EQ(*c.numerics.element_size, 1e-3);
+  EXPECT_EQ(c.numerics.elements_through_thickness, 3);
+  EXPECT_DOUBLE_EQ(*c.numerics.end_time, 0.5);
+  EXPECT_TRUE(c.defaults_used.empty());
+}
+
+TEST(CaseFile, OverridesWinOverTheFile) {
+  const std::vector<Override> o = {{"shell.h", "1.5mm", "--h"}, {"friction.mu", "0.1", "--mu"}};
+  const auto c = parse_case(kMinimal, "case.toml", o);
+  EXPECT_DOUBLE_EQ(c.shell.h, 0.0015);
+  EXPECT_DOUBLE_EQ(c.friction.mu, 0.1);
+}
+
+TEST(CaseFile, ErrorsNameKeyAndLine) {
+  // unknown key, with the file's line
+  expect_error(replace(kMinimal, "h = \"2 mm\"", "thickness = \"2 mm\""),
+               {"case.toml:3", "unknown key 'thickness' in [shell]", "R, h, phi"});
+  // unknown table
+  expect_error(kMinimal + "[plate]\nmu = 0.3\n", {"case.toml:10", "unknown table 'plate'"});
+  // wrong dimension
+  expect_error(replace(kMinimal, "R = \"30 mm\"", "R = \"30 kg\""),
+               {"case.toml:2", "shell.R", "'kg' is a mass, but a length is needed"});
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2 N\""),
+               {"case.toml:6", "material.E", "is a force, but a pressure is needed"});
+  // unknown unit
+  expect_error(replace(kMinimal, "net_weight = \"0.48 N\"", "net_weight = \"0.48 Nm2x\""),
+               {"case.toml:9", "popper.net_weight", "unknown unit"});
+  // wrong TOML type
+  expect_error(replace(kMinimal, "R = \"30 mm\"", "R = true"),
+               {"case.toml:2", "shell.R must be a number or a string with a unit"});
+  // TOML syntax error
+  expect_error(replace(kMinimal, "R = \"30 mm\"", "R = \"30 mm"), {"case.toml:2", "not valid TOML"});
+}
+
+TEST(CaseFile, MissingRequiredValues) {
+  expect_error(replace(kMinimal, "R = \"30 mm\"\n", ""),
+               {"case.toml", "missing required value shell.R", "length", "[shell]"});
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"\n", ""),
+               {"missing required value material.E", "pressure"});
+  expect_error(replace(kMinimal, "net_weight = \"0.48 N\"\n", ""),
+               {"missing required value popper.net_weight", "force"});
+}
+
+TEST(CaseFile, UnphysicalValues) {
+  expect_error(replace(kMinimal, "h = \"2 mm\"", "h = \"30 mm\""),
+               {"case.toml:3", "shell.h", "must be smaller than shell.R"});
+  expect_error(replace(kMinimal, "h = \"2 mm\"", "h = \"-2 mm\""),
+               {"case.toml:3", "shell.h", "must be positive"});
+  expect_error(kMinimal + "", {"--nu", "material.nu", "(-1, 0.5]"},
+               {{"material.nu", "0.51", "--nu"}});
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2 MPa\"\nnu = -1.2"),
+               {"case.toml:7", "material.nu", "(-1, 0.5]"});
+  expect_error(replace(kMinimal, "h = \"2 mm\"", "h = \"2 mm\"\nphi = \"180 deg\""),
+               {"case.toml:4", "shell.phi", "between 0 and 180 deg"});
+  expect_error(replace(kMinimal, "h = \"2 mm\"", "h = \"2 mm\"\nphi = 80"),
+               {"case.toml:4", "shell.phi", "radians"});
+  expect_error(replace(kMinimal, "h = \"2 mm\"", "h = \"2 mm\"\nphi = \"0 deg\""),
+               {"shell.phi", "between 0 and 180 deg"});
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"", "E = 0"),
+               {"case.toml:6", "material.E", "must be positive"});
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2 MPa\"\nrho = \"-1 kg/m^3\""),
+               {"case.toml:7", "material.rho", "must be positive"});
+  expect_error(replace(kMinimal, "net_weight = \"0.48 N\"", "net_weight = \"0 N\""),
+               {"case.toml:9", "popper.net_weight", "must be positive"});
+  expect_error(kMinimal + "moving_mass = \"-1 g\"\n", {"popper.moving_mass", "must be positive"});
+  expect_error(kMinimal + "moving_mass = \"10 g\"\n",
+               {"popper.moving_mass", "at least net_weight / g"});
+  expect_error(kMinimal + "[friction]\nmu = -0.1\n", {"case.toml:11", "friction.mu", "negative"});
+  expect_error(kMinimal + "[protocol]\ndelta_p_j = \"2 kPa\"\ndelta_p_j_over_pc = 0.5\n",
+               {"not both"});
+  expect_error(kMinimal + "[protocol]\ndelta_p_j = \"200 kPa\"\n",
+               {"protocol.delta_p_j", "[0, p0)"});
+  expect_error(kMinimal + "[numerics]\nresolution = \"ultra\"\n",
+               {"case.toml:11", "numerics.resolution"});
+  expect_error(kMinimal + "[numerics]\nelements_through_thickness = 0\n",
+               {"case.toml:11", "elements_through_thickness"});
+  expect_error(kMinimal + "[gas]\ncontainer_volume = \"0 mL\"\n",
+               {"gas.container_volume", "must be positive"});
+}
+
+TEST(CaseFile, NonFiniteNumbersAreRejected) {
+  expect_error(replace(kMinimal, "R = \"30 mm\"", "R = nan"), {"case.toml:2", "not a finite"});
+  expect_error(replace(kMinimal, "R = \"30 mm\"", "R = inf"), {"case.toml:2", "not a finite"});
+}
+
+TEST(CaseFile, BadOverrideNamesTheFlag) {
+  expect_error(kMinimal, {"--R", "shell.R", "is a mass"}, {{"shell.R", "30 g", "--R"}});
+}
+
+TEST(CaseFile, MissingFile) {
+  EXPECT_THROW((void)load_case_file("/nonexistent/case.toml"), CaseError);
+}
+
+TEST(CaseFile, DefaultCaseIsThePapersFig2aPopper) {
+  const auto c = default_case();
+  EXPECT_DOUBLE_EQ(c.shell.R, 0.030);
+  EXPECT_DOUBLE_EQ(c.shell.h, 0.002);
+  EXPECT_DOUBLE_EQ(c.material.E, 1.2e6);
+  EXPECT_DOUBLE_EQ(c.popper.net_weight, 0.48);
+}
+
+TEST(CaseFile, ExamplesLoadAndDefaultMatchesItsExample) {
+  const std::filesystem::path dir = std::filesystem::path(SNAPJUMP_SOURCE_DIR) / "examples";
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".toml") continue;
+    if (entry.path().filename().string().rfind("sweep", 0) == 0) continue;
+    SCOPED_TRACE(entry.path().string());
+    EXPECT_NO_THROW((void)load_case_file(entry.path()));
+    ++count;
+  }
+  EXPECT_GE(count, 5);
+  const auto file = load_case_file(dir / "default.toml");
+  const auto builtin = default_case();
+  EXPECT_DOUBLE_EQ(file.shell.R, builtin.shell.R);
+  EXPECT_DOUBLE_EQ(file.shell.h, builtin.shell.h);
+  EXPECT_DOUBLE_EQ(file.shell.phi, builtin.shell.phi);
+  EXPECT_DOUBLE_EQ(file.material.E, builtin.material.E);
+  EXPECT_DOUBLE_EQ(file.popper.net_weight, builtin.popper.net_weight);
+}
+
+}  // namespace
+}  // namespace snapjump::config
