@@ -2,6 +2,4 @@
 
 #include "app/cli.hpp"
 
-int main(int argc, char** argv) {
-  return snapjump::app::run_cli(argc, argv, std::cout, std::cerr);
-}
+int main(int argc, char** argv) { return snapjump::app::run_cli(argc, argv, std::cout, std::cerr); }

@@ -1,13 +1,13 @@
 #include "app/cli.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <CLI/CLI.hpp>
 #include <map>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <fmt/format.h>
-#include <fmt/ostream.h>
 
 #include "config/case.hpp"
 #include "io/prediction_report.hpp"
@@ -28,11 +28,13 @@ struct CaseOptions {
         ->check(CLI::ExistingFile);
     for (const auto& k : config::quantity_keys()) {
       const auto key = fmt::format("{}.{}", k.table, k.name);
-      auto help = fmt::format("{} [{}], e.g. \"{}\"; overrides {}", k.help,
-                              units::dimension_name(k.dimension), units::example(k.dimension), key);
+      auto help = fmt::format(
+          "{} [{}], e.g. {}; {}overrides {}", k.help, units::dimension_name(k.dimension), k.example,
+          k.default_text.empty() ? std::string() : fmt::format("default {}; ", k.default_text),
+          key);
       cmd.add_option_function<std::string>(
-             fmt::format("--{}", k.flag),
-             [this, key](const std::string& v) { values[key] = v; }, help)
+             fmt::format("--{}", k.flag), [this, key](const std::string& v) { values[key] = v; },
+             help)
           ->group(fmt::format("Case values ([{}])", k.table))
           ->type_name("VALUE");
     }

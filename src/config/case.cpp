@@ -1,14 +1,14 @@
 #include "config/case.hpp"
 
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
 #include <numbers>
 #include <sstream>
-
-#include <fmt/format.h>
-#include <toml++/toml.h>
 
 namespace snapjump::config {
 namespace {
@@ -18,33 +18,38 @@ using units::Dimension;
 constexpr double kDeg = std::numbers::pi / 180.0;
 
 constexpr KeySpec kKeys[] = {
-    {"shell", "R", "R", Dimension::Length, true, std::nullopt, "", "mid-surface radius of curvature"},
-    {"shell", "h", "h", Dimension::Length, true, std::nullopt, "", "shell thickness"},
-    {"shell", "phi", "phi", Dimension::Angle, false, 80.0 * kDeg, "80 deg",
+    {"shell", "R", "R", Dimension::Length, true, std::nullopt, "", "30 mm",
+     "mid-surface radius of curvature"},
+    {"shell", "h", "h", Dimension::Length, true, std::nullopt, "", "2 mm", "shell thickness"},
+    {"shell", "phi", "phi", Dimension::Angle, false, 80.0 * kDeg, "80 deg", "80 deg",
      "polar angle of the rim, measured from the apex"},
-    {"material", "E", "E", Dimension::Pressure, true, std::nullopt, "", "Young's modulus"},
-    {"material", "nu", "nu", Dimension::Dimensionless, false, 0.45, "0.45", "Poisson's ratio"},
-    {"material", "rho", "rho", Dimension::Density, false, 1160.0, "1160 kg/m^3", "density"},
-    {"popper", "net_weight", "net-weight", Dimension::Force, true, std::nullopt, "",
+    {"material", "E", "E", Dimension::Pressure, true, std::nullopt, "", "1.2 MPa",
+     "Young's modulus"},
+    {"material", "nu", "nu", Dimension::Dimensionless, false, 0.45, "0.45", "0.45",
+     "Poisson's ratio"},
+    {"material", "rho", "rho", Dimension::Density, false, 1160.0, "1160 kg/m^3", "1160 kg/m^3",
+     "density"},
+    {"popper", "net_weight", "net-weight", Dimension::Force, true, std::nullopt, "", "0.48 N",
      "net weight mg: container + shell - counterweight"},
-    {"popper", "moving_mass", "moving-mass", Dimension::Mass, false, std::nullopt,
-     "net_weight / g", "inertia of container + shell + counterweight"},
-    {"friction", "mu", "mu", Dimension::Dimensionless, false, 0.3, "0.3",
+    {"popper", "moving_mass", "moving-mass", Dimension::Mass, false, std::nullopt, "net_weight / g",
+     "60 g", "inertia of container + shell + counterweight"},
+    {"friction", "mu", "mu", Dimension::Dimensionless, false, 0.3, "0.3", "0.3",
      "Coulomb friction coefficient between shell and plate"},
     {"gas", "container_volume", "container-volume", Dimension::Volume, false, 200e-6, "200 mL",
-     "volume of the rigid container above the rim plane"},
-    {"gas", "p0", "p0", Dimension::Pressure, false, 101325.0, "101325 Pa", "atmospheric pressure"},
-    {"gas", "alpha_n", "alpha-n", Dimension::ValveAcceleration, false, 1.0e-3,
+     "200 mL", "volume of the rigid container above the rim plane"},
+    {"gas", "p0", "p0", Dimension::Pressure, false, 101325.0, "101325 Pa", "101325 Pa",
+     "atmospheric pressure"},
+    {"gas", "alpha_n", "alpha-n", Dimension::ValveAcceleration, false, 1.0e-3, "1.0e-3 Pa^-1 s^-2",
      "1.0e-3 Pa^-1 s^-2", "valve law: d2Jn/dt2 = -alpha_n delta_p"},
     {"gas", "beta_n", "beta-n", Dimension::ValveRate, false, 5.0e-5, "5.0e-5 Pa^-1 s^-1",
-     "valve law: dJn/dt(0) = -beta_n delta_p(0)"},
-    {"protocol", "delta_p_j", "delta-p-j", Dimension::Pressure, false, std::nullopt, "",
+     "5.0e-5 Pa^-1 s^-1", "valve law: dJn/dt(0) = -beta_n delta_p(0)"},
+    {"protocol", "delta_p_j", "delta-p-j", Dimension::Pressure, false, std::nullopt, "", "3 kPa",
      "pressure difference (outside - inside) at release"},
     {"protocol", "delta_p_j_over_pc", "delta-p-j-over-pc", Dimension::Dimensionless, false, 0.5,
-     "0.5", "delta_p_j as a fraction of Zoelly's p_c (when delta_p_j is not given)"},
-    {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "",
+     "0.5", "0.5", "delta_p_j as a fraction of Zoelly's p_c (when delta_p_j is not given)"},
+    {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "", "1 mm",
      "target mesh element size (from the resolution preset when absent)"},
-    {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "",
+    {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "", "0.5 s",
      "simulated time after release (until the apex of the flight when absent)"},
 };
 
@@ -53,7 +58,8 @@ constexpr std::string_view kResolutionKey = "resolution";
 constexpr std::string_view kLayersKey = "elements_through_thickness";
 constexpr std::string_view kTitleKey = "title";
 
-constexpr std::string_view kDefaultCase = R"(# The paper's Fig. 2(a) popper: (R, h) = (30, 2.0) mm, mg = 0.48 N.
+constexpr std::string_view kDefaultCase =
+    R"(# The paper's Fig. 2(a) popper: (R, h) = (30, 2.0) mm, mg = 0.48 N.
 title = "Fig. 2(a) popper, (R, h) = (30, 2.0) mm, mg = 0.48 N"
 
 [shell]
@@ -144,10 +150,9 @@ class Reader {
 
   void apply(const Override& o) {
     const auto dot = o.key.find('.');
-    const auto* k = dot == std::string::npos
-                        ? nullptr
-                        : find_key(std::string_view(o.key).substr(0, dot),
-                                   std::string_view(o.key).substr(dot + 1));
+    const auto* k = dot == std::string::npos ? nullptr
+                                             : find_key(std::string_view(o.key).substr(0, dot),
+                                                        std::string_view(o.key).substr(dot + 1));
     if (k == nullptr) throw CaseError(fmt::format("{}: unknown case key '{}'", o.origin, o.key));
     entries_[full_key(*k)] = Entry{convert(*k, o.text, o.origin), o.text, o.origin};
   }
@@ -163,10 +168,10 @@ class Reader {
     if (k.required) {
       throw CaseError(fmt::format(
           "{}: missing required value {} ({}, {}, e.g. \"{}\"); add it under [{}]", source_,
-          full_key(k), k.help, units::dimension_name(k.dimension), units::example(k.dimension),
-          k.table));
+          full_key(k), k.help, units::dimension_name(k.dimension), k.example, k.table));
     }
-    if (k.default_si) c.defaults_used.push_back(fmt::format("{} = {}", full_key(k), k.default_text));
+    if (k.default_si)
+      c.defaults_used.push_back(fmt::format("{} = {}", full_key(k), k.default_text));
     return k.default_si;
   }
 
@@ -188,10 +193,14 @@ class Reader {
       if (table_name == "numerics" && name == kResolutionKey) {
         const auto* s = node.as_string();
         const std::string v = s ? s->get() : "";
-        if (v == "coarse") c.numerics.resolution = Resolution::Coarse;
-        else if (v == "default") c.numerics.resolution = Resolution::Default;
-        else if (v == "fine") c.numerics.resolution = Resolution::Fine;
-        else fail(key.source(), "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
+        if (v == "coarse")
+          c.numerics.resolution = Resolution::Coarse;
+        else if (v == "default")
+          c.numerics.resolution = Resolution::Default;
+        else if (v == "fine")
+          c.numerics.resolution = Resolution::Fine;
+        else
+          fail(key.source(), "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
         continue;
       }
       if (table_name == "numerics" && name == kLayersKey) {
@@ -223,7 +232,7 @@ class Reader {
         si = convert(*k, text, origin);
       } else {
         fail(key.source(), fmt::format("{} must be a number or a string with a unit (e.g. \"{}\")",
-                                       full_key(*k), units::example(k->dimension)));
+                                       full_key(*k), k->example));
       }
       entries_[full_key(*k)] = Entry{si, text, origin};
     }
@@ -247,9 +256,7 @@ void check(bool ok, const std::string& message) {
 }
 
 Case build(const Reader& r, Case c) {
-  const auto get = [&](std::string_view t, std::string_view n) {
-    return r.value(spec(t, n), c);
-  };
+  const auto get = [&](std::string_view t, std::string_view n) { return r.value(spec(t, n), c); };
   const auto positive = [&](std::string_view t, std::string_view n, double v) {
     check(v > 0.0, fmt::format("{} must be positive", r.where(spec(t, n))));
   };
@@ -270,8 +277,8 @@ Case build(const Reader& r, Case c) {
   const auto* dpj = r.find(spec("protocol", "delta_p_j"));
   const auto* dpj_ratio = r.find(spec("protocol", "delta_p_j_over_pc"));
   if (dpj != nullptr && dpj_ratio != nullptr) {
-    throw CaseError(fmt::format("{}: give protocol.delta_p_j or protocol.delta_p_j_over_pc, not both",
-                                dpj->origin));
+    throw CaseError(fmt::format(
+        "{}: give protocol.delta_p_j or protocol.delta_p_j_over_pc, not both", dpj->origin));
   }
   if (dpj != nullptr) {
     c.protocol.delta_p_j = dpj->si;
@@ -331,9 +338,12 @@ Case build(const Reader& r, Case c) {
 
 std::string_view to_string(Resolution r) {
   switch (r) {
-    case Resolution::Coarse: return "coarse";
-    case Resolution::Default: return "default";
-    case Resolution::Fine: return "fine";
+    case Resolution::Coarse:
+      return "coarse";
+    case Resolution::Default:
+      return "default";
+    case Resolution::Fine:
+      return "fine";
   }
   return "default";
 }

@@ -100,6 +100,7 @@ struct KeySpec {
   bool required;                     // must be in a case file
   std::optional<double> default_si;  // used when absent and not required
   std::string_view default_text;     // how the default is shown ("0.45", "80 deg")
+  std::string_view example;          // a typical value with its unit ("2 mm")
   std::string_view help;
 };
 

@@ -1,5 +1,6 @@
 #include "config/units.hpp"
 
+#include <fmt/format.h>
 #include <udunits2.h>
 
 #include <array>
@@ -7,8 +8,6 @@
 #include <cmath>
 #include <string>
 #include <system_error>
-
-#include <fmt/format.h>
 
 namespace snapjump::units {
 namespace {
@@ -31,10 +30,10 @@ constexpr std::array kDimensions{
     DimensionRow{Dimension::Volume, "volume", "m^3", "m^3", "200 mL"},
     DimensionRow{Dimension::Time, "time", "s", "s", "10 ms"},
     DimensionRow{Dimension::Dimensionless, "dimensionless number", "1", "1", "0.3"},
-    DimensionRow{Dimension::ValveAcceleration, "inverse pressure per time squared",
-                 "Pa^-1 s^-2", "Pa^-1 s^-2", "1.0e-3 Pa^-1 s^-2"},
-    DimensionRow{Dimension::ValveRate, "inverse pressure per time", "Pa^-1 s^-1",
-                 "Pa^-1 s^-1", "5.0e-5 Pa^-1 s^-1"},
+    DimensionRow{Dimension::ValveAcceleration, "inverse pressure per time squared", "Pa^-1 s^-2",
+                 "Pa^-1 s^-2", "1.0e-3 Pa^-1 s^-2"},
+    DimensionRow{Dimension::ValveRate, "inverse pressure per time", "Pa^-1 s^-1", "Pa^-1 s^-1",
+                 "5.0e-5 Pa^-1 s^-1"},
 };
 
 const DimensionRow& row(Dimension d) {
@@ -56,7 +55,8 @@ constexpr std::array<std::pair<std::string_view, std::string_view>, 6> kOtherDim
 
 // "a length", "an angle", "an energy".
 std::string with_article(std::string_view noun) {
-  const bool vowel = !noun.empty() && std::string_view("aeiou").find(noun.front()) != std::string_view::npos;
+  const bool vowel =
+      !noun.empty() && std::string_view("aeiou").find(noun.front()) != std::string_view::npos;
   return fmt::format("{} {}", vowel ? "an" : "a", noun);
 }
 
@@ -127,8 +127,7 @@ struct UnitParser::Impl {
     const auto& r = row(expected);
     if (expected == Dimension::Dimensionless) {
       if (!unit_str.empty()) {
-        throw UnitError(
-            fmt::format("takes a plain number without unit, not '{}'", unit_str));
+        throw UnitError(fmt::format("takes a plain number without unit, not '{}'", unit_str));
       }
       return value;
     }
@@ -182,12 +181,12 @@ double UnitParser::parse(std::string_view text, Dimension expected) const {
     throw UnitError(fmt::format("'{}' is out of range", s));
   }
   if (ec != std::errc() || ptr == begin) {
-    throw UnitError(fmt::format("'{}' does not start with a number (e.g. \"{}\")", s,
-                                row(expected).example));
+    throw UnitError(
+        fmt::format("'{}' does not start with a number (e.g. \"{}\")", s, row(expected).example));
   }
   if (!std::isfinite(value)) throw UnitError(fmt::format("'{}' is not a finite number", s));
-  const double si = impl_->to_si(value, std::string_view(ptr, static_cast<size_t>(end - ptr)),
-                                 expected);
+  const double si =
+      impl_->to_si(value, std::string_view(ptr, static_cast<size_t>(end - ptr)), expected);
   if (!std::isfinite(si)) throw UnitError(fmt::format("'{}' is not a finite number", s));
   return si;
 }
@@ -196,8 +195,8 @@ double UnitParser::to_si(double value, std::string_view unit, Dimension expected
   return impl_->to_si(value, unit, expected);
 }
 
-double UnitParser::from_si(double si_value, std::string_view unit, Dimension d) const {
-  return si_value / impl_->to_si(1.0, unit, d);
+double UnitParser::from_si(double value_si, std::string_view unit, Dimension d) const {
+  return value_si / impl_->to_si(1.0, unit, d);
 }
 
 }  // namespace snapjump::units

@@ -14,15 +14,15 @@ namespace snapjump::units {
 
 // What kind of quantity a value must be. Each has an SI unit that the parser converts to.
 enum class Dimension {
-  Length,          // m
-  Angle,           // rad
-  Pressure,        // Pa
-  Force,           // N
-  Mass,            // kg
-  Density,         // kg/m^3
-  Volume,          // m^3
-  Time,            // s
-  Dimensionless,   // plain number, no unit allowed
+  Length,             // m
+  Angle,              // rad
+  Pressure,           // Pa
+  Force,              // N
+  Mass,               // kg
+  Density,            // kg/m^3
+  Volume,             // m^3
+  Time,               // s
+  Dimensionless,      // plain number, no unit allowed
   ValveAcceleration,  // Pa^-1 s^-2 (the gas law's alpha_n)
   ValveRate,          // Pa^-1 s^-1 (the gas law's beta_n)
 };
@@ -58,7 +58,7 @@ class UnitParser {
   [[nodiscard]] double to_si(double value, std::string_view unit, Dimension expected) const;
 
   // SI value -> value in `unit` (for printing in convenient units). Throws UnitError.
-  [[nodiscard]] double from_si(double si_value, std::string_view unit, Dimension d) const;
+  [[nodiscard]] double from_si(double value_si, std::string_view unit, Dimension d) const;
 
  private:
   struct Impl;

@@ -1,25 +1,25 @@
 #include "io/prediction_report.hpp"
 
-#include <cmath>
-#include <numbers>
-
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+
+#include <cmath>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 namespace snapjump::io {
 namespace {
 
 ReportRow exact(std::string group, std::string key, std::string label, double v,
                 std::string si_unit, std::string unit, double unit_si) {
-  return {std::move(group), std::move(key), std::move(label), v, v, std::move(si_unit),
-          std::move(unit), unit_si};
+  return {std::move(group),   std::move(key),  std::move(label), v, v,
+          std::move(si_unit), std::move(unit), unit_si};
 }
 
 ReportRow range(std::string group, std::string key, std::string label, theory::Range r,
                 std::string si_unit, std::string unit, double unit_si) {
-  return {std::move(group), std::move(key), std::move(label), r.lo, r.hi, std::move(si_unit),
-          std::move(unit), unit_si};
+  return {std::move(group),   std::move(key),  std::move(label), r.lo, r.hi,
+          std::move(si_unit), std::move(unit), unit_si};
 }
 
 std::string number(double v) {
@@ -59,8 +59,8 @@ std::vector<ReportRow> prediction_rows(const theory::Prediction& p) {
       range(q, "H_l", "H_l lift up to the transition", p.H_l, "m", "mm", 1e-3),
       range(q, "H_s", "H_s flight from the snap", p.H_s, "m", "mm", 1e-3),
       range(q, "H", "H = H_l + H_s  jump height", p.H, "m", "mm", 1e-3),
-      exact(o, "inverted_energy", "U   energy of the inverted shell", p.inverted_energy, "J",
-            "mJ", 1e-3),
+      exact(o, "inverted_energy", "U   energy of the inverted shell", p.inverted_energy, "J", "mJ",
+            1e-3),
       range(o, "jump_margin", "F*/mg  (Jump needs > 1)", p.jump_margin, "1", "", 1.0),
       range(o, "snap_margin", "U/(mg H_l)  (No snap when < 1)", p.snap_margin, "1", "", 1.0),
   };

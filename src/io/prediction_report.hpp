@@ -12,13 +12,13 @@ namespace snapjump::io {
 
 // One reported quantity: bounds in SI, plus the unit it is shown in on the table.
 struct ReportRow {
-  std::string group;    // "geometry", "scales", ...
-  std::string key;      // machine name, e.g. "r_star"
-  std::string label;    // "r*  contact radius at the transition onset"
-  double lo = 0.0;      // SI
-  double hi = 0.0;      // SI; equal to lo for exact quantities
-  std::string si_unit;  // "m"
-  std::string unit;     // display unit on the table, "mm"
+  std::string group;     // "geometry", "scales", ...
+  std::string key;       // machine name, e.g. "r_star"
+  std::string label;     // "r*  contact radius at the transition onset"
+  double lo = 0.0;       // SI
+  double hi = 0.0;       // SI; equal to lo for exact quantities
+  std::string si_unit;   // "m"
+  std::string unit;      // display unit on the table, "mm"
   double unit_si = 1.0;  // SI value of one display unit
   [[nodiscard]] bool exact() const { return lo == hi; }
 };

@@ -56,9 +56,12 @@ double mirror_energy(double C, double E, double h, double d, double nu, double R
 
 std::string to_string(Outcome o) {
   switch (o) {
-    case Outcome::Jump: return "Jump";
-    case Outcome::Snap: return "Snap";
-    case Outcome::NoSnap: return "No snap";
+    case Outcome::Jump:
+      return "Jump";
+    case Outcome::Snap:
+      return "Snap";
+    case Outcome::NoSnap:
+      return "No snap";
   }
   return "?";
 }

@@ -11,20 +11,22 @@
 namespace snapjump::theory {
 
 // --- Spherical cap of mid-surface radius R, thickness h, rim polar angle phi ---------------------
-double rim_radius(double R, double phi);                 // R sin(phi)
-double cap_depth(double R, double phi);                  // R (1 - cos(phi))
-double shell_volume(double R, double h, double phi);     // material volume, radial rim cut
+double rim_radius(double R, double phi);              // R sin(phi)
+double cap_depth(double R, double phi);               // R (1 - cos(phi))
+double shell_volume(double R, double h, double phi);  // material volume, radial rim cut
 double shell_mass(double R, double h, double phi, double rho);
 // Volume between the inner surface (radius R - h/2) and the plane of its rim circle.
 double cavity_volume(double R, double h, double phi);
 
-// --- Classical shell results -----------------------------------------------------------------------
-// Zoelly: p_c = 2 E h^2 / (R^2 sqrt(3 (1 - nu^2))).
+// --- Classical shell results
+// ----------------------------------------------------------------------- Zoelly: p_c = 2 E h^2 /
+// (R^2 sqrt(3 (1 - nu^2))).
 double zoelly_pressure(double E, double h, double R, double nu);
 // Reissner's point-load stiffness of a spherical shell: F / e = 4 E h^2 / (R sqrt(3 (1 - nu^2))).
 double reissner_stiffness(double E, double h, double R, double nu);
 
-// --- Scales of the paper ---------------------------------------------------------------------------
+// --- Scales of the paper
+// ---------------------------------------------------------------------------
 double r_c(double h, double R);                      // sqrt(h R)
 double e_c(double h);                                // h
 double F_c(double E, double h, double R);            // E h^3 / R
@@ -34,12 +36,12 @@ double alpha_t(double alpha_e, double alpha_F);      // sqrt(3 alpha_e / alpha_F
 // H_l = R (1 - cos phi) - alpha_e h: lift of the container up to the contact transition.
 double lifting_height(double R, double phi, double h, double alpha_e);
 // H_s = alpha_F alpha_e E h^4 / (m g R): flight height from the snap, m g the net weight.
-double snap_height(double alpha_F, double alpha_e, double E, double h, double net_weight,
-                   double R);
+double snap_height(double alpha_F, double alpha_e, double E, double h, double net_weight, double R);
 // Stored energy of the mirror-buckled cap, U = C E h^(5/2) d^(3/2) / ((1 - nu^2)^(3/4) R).
 double mirror_energy(double C, double E, double h, double d, double nu, double R);
 
-// --- The prediction for one case ------------------------------------------------------------------
+// --- The prediction for one case
+// ------------------------------------------------------------------
 enum class Outcome { Jump, Snap, NoSnap };
 std::string to_string(Outcome o);
 
@@ -48,7 +50,9 @@ struct OutcomeSet {
   bool jump = false;
   bool snap = false;
   bool no_snap = false;
-  [[nodiscard]] bool certain() const { return (jump ? 1 : 0) + (snap ? 1 : 0) + (no_snap ? 1 : 0) == 1; }
+  [[nodiscard]] bool certain() const {
+    return (jump ? 1 : 0) + (snap ? 1 : 0) + (no_snap ? 1 : 0) == 1;
+  }
   [[nodiscard]] std::string text() const;  // "Jump", "Jump or Snap", ...
 };
 

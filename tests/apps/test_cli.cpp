@@ -1,5 +1,3 @@
-#include "app/cli.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -8,6 +6,8 @@
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "app/cli.hpp"
 
 namespace snapjump::app {
 namespace {
@@ -78,8 +78,8 @@ TEST(Cli, PredictCsv) {
 }
 
 TEST(Cli, FlagsWithUnitsOverrideTheCase) {
-  const auto r = run({"predict", "--R", "25mm", "--h", "2.5 mm", "--nu", "0.5", "--format",
-                      "json"});
+  const auto r =
+      run({"predict", "--R", "25mm", "--h", "2.5 mm", "--nu", "0.5", "--format", "json"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
   const auto doc = nlohmann::json::parse(r.out);
   EXPECT_DOUBLE_EQ(doc["case"]["R"].get<double>(), 0.025);

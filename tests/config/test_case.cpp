@@ -1,5 +1,3 @@
-#include "config/case.hpp"
-
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +6,8 @@
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include "config/case.hpp"
 
 namespace snapjump::config {
 namespace {
@@ -156,7 +156,8 @@ TEST(CaseFile, ErrorsNameKeyAndLine) {
   expect_error(replace(kMinimal, "R = \"30 mm\"", "R = true"),
                {"case.toml:2", "shell.R must be a number or a string with a unit"});
   // TOML syntax error
-  expect_error(replace(kMinimal, "R = \"30 mm\"", "R = \"30 mm"), {"case.toml:2", "not valid TOML"});
+  expect_error(replace(kMinimal, "R = \"30 mm\"", "R = \"30 mm"),
+               {"case.toml:2", "not valid TOML"});
 }
 
 TEST(CaseFile, MissingRequiredValues) {

@@ -1,10 +1,10 @@
-#include "config/units.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <string>
+
+#include "config/units.hpp"
 
 namespace snapjump::units {
 namespace {

@@ -1,13 +1,12 @@
 // Each closed form against numbers worked out by hand (the arithmetic is in the comments), and
 // against limits that any correct implementation must reach.
-#include "theory/scaling.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
 #include "config/case.hpp"
+#include "theory/scaling.hpp"
 
 namespace snapjump::theory {
 namespace {
