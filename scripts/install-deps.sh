@@ -11,7 +11,9 @@ packages=(
   libfmt-dev             # formatting
   nlohmann-json3-dev     # JSON output
   libudunits2-dev        # units in case files and flags
+  libgmsh-dev            # meshes (gmsh C++ API, .msh files)
   libgtest-dev           # tests
+  libbenchmark-dev       # benchmarks (bench/)
 )
 
 missing=()

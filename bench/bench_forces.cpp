@@ -1,0 +1,42 @@
+// Internal-force loop of the default (30, 2.0) mm cap: elements per second at 1 and 2 threads.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <numbers>
+
+#include "fem/body.hpp"
+#include "mesh/cap_mesher.hpp"
+
+namespace {
+
+using namespace snapjump;
+
+const fem::Body& default_cap() {
+  // The default resolution's mesh of the (30, 2.0) mm cap: 2 mm in-surface element size, 2
+  // quadratic elements through the thickness.
+  static const fem::Body body(
+      mesh::make_cap_mesh({0.030, 0.002, 80.0 * std::numbers::pi / 180.0, 0.002, 2}),
+      fem::Material::from_young(1.2e6, 0.45, 1160.0));
+  return body;
+}
+
+void BM_InternalForces(benchmark::State& state) {
+  const auto& body = default_cap();
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  auto x = body.mesh().nodes;
+  for (std::size_t a = 0; a < x.size(); ++a) x.z[a] *= 1.001;  // a small stretch
+  mesh::Points f;
+  for (auto _ : state) {
+    body.internal_forces(x, f);
+    benchmark::DoNotOptimize(f.z.data());
+  }
+  state.counters["elements"] = static_cast<double>(body.num_elements());
+  state.counters["nodes"] = static_cast<double>(body.num_nodes());
+  state.counters["elements_per_s"] = benchmark::Counter(
+      static_cast<double>(body.num_elements()) * state.iterations(), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_InternalForces)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

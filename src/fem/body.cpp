@@ -1,0 +1,350 @@
+#include "fem/body.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+#include "fem/tet10.hpp"
+
+namespace snapjump::fem {
+namespace {
+
+constexpr int kQp = 4;  // points of the degree-2 rule
+constexpr int kGradStride = kTetNodes * 3;
+
+double det3(const double A[9]) {
+  return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
+         A[2] * (A[3] * A[7] - A[4] * A[6]);
+}
+
+// F^-T of a row-major 3x3 with determinant J: cofactor matrix / J.
+void inverse_transpose(const double F[9], double J, double out[9]) {
+  const double inv = 1.0 / J;
+  out[0] = (F[4] * F[8] - F[5] * F[7]) * inv;
+  out[1] = (F[5] * F[6] - F[3] * F[8]) * inv;
+  out[2] = (F[3] * F[7] - F[4] * F[6]) * inv;
+  out[3] = (F[2] * F[7] - F[1] * F[8]) * inv;
+  out[4] = (F[0] * F[8] - F[2] * F[6]) * inv;
+  out[5] = (F[1] * F[6] - F[0] * F[7]) * inv;
+  out[6] = (F[1] * F[5] - F[2] * F[4]) * inv;
+  out[7] = (F[2] * F[3] - F[0] * F[5]) * inv;
+  out[8] = (F[0] * F[4] - F[1] * F[3]) * inv;
+}
+
+// Greedy colouring: each element takes the smallest colour not used by an element sharing a node.
+std::vector<std::vector<int>> colour_elements(const mesh::Mesh& m) {
+  const std::size_t n = m.nodes.size();
+  std::vector<std::vector<int>> node_elements(n);
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    for (int a : m.tets[e]) node_elements[a].push_back(static_cast<int>(e));
+  }
+  std::vector<int> colour(m.tets.size(), -1);
+  std::vector<int> used;
+  std::vector<std::vector<int>> colours;
+  for (std::size_t e = 0; e < m.tets.size(); ++e) {
+    used.assign(colours.size() + 1, 0);
+    for (int a : m.tets[e]) {
+      for (int other : node_elements[a]) {
+        if (colour[other] >= 0) used[colour[other]] = 1;
+      }
+    }
+    const int c = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
+    colour[e] = c;
+    if (c == static_cast<int>(colours.size())) colours.emplace_back();
+    colours[c].push_back(static_cast<int>(e));
+  }
+  return colours;
+}
+
+}  // namespace
+
+Material Material::from_young(double E, double nu, double rho) {
+  if (!(E > 0 && nu > -1.0 && nu < 0.5 && rho > 0)) {
+    throw std::invalid_argument(fmt::format(
+        "the compressible neo-Hookean body needs E > 0, rho > 0 and -1 < nu < 0.5 (got E = {}, "
+        "nu = {}, rho = {})",
+        E, nu, rho));
+  }
+  return {E / (2.0 * (1.0 + nu)), E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), rho};
+}
+
+double Material::p_wave_speed() const { return std::sqrt((lambda + 2.0 * mu) / rho); }
+
+bool neo_hookean_stress(const Material& m, const double F[9], double P[9]) {
+  const double J = det3(F);
+  if (!(J > 0.0)) return false;
+  double Finv_t[9];
+  inverse_transpose(F, J, Finv_t);
+  const double c = m.lambda * std::log(J);
+  for (int k = 0; k < 9; ++k) P[k] = m.mu * (F[k] - Finv_t[k]) + c * Finv_t[k];
+  return true;
+}
+
+double neo_hookean_energy(const Material& m, const double F[9]) {
+  const double J = det3(F);
+  if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
+  double trC = 0.0;
+  for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
+  const double lnJ = std::log(J);
+  return 0.5 * m.mu * (trC - 3.0) - m.mu * lnJ + 0.5 * m.lambda * lnJ * lnJ;
+}
+
+InvertedElement::InvertedElement(int e, double px, double py, double pz)
+    : std::runtime_error(fmt::format(
+          "element {} is inverted or its force is not finite (near ({:.4g}, {:.4g}, {:.4g}) m)", e,
+          px, py, pz)),
+      element(e),
+      x(px),
+      y(py),
+      z(pz) {}
+
+Body::Body(mesh::Mesh mesh, const Material& material)
+    : mesh_(std::move(mesh)), material_(material) {
+  mesh::check_mesh(mesh_);
+  const std::size_t ne = mesh_.tets.size();
+  const std::size_t nn = mesh_.nodes.size();
+  grad_.resize(ne * kQp * kGradStride);
+  weight_.resize(ne * kQp);
+  std::vector<double> n2(nn, 0.0);  // integral of N_a^2 over the body
+  min_spacing_ = std::numeric_limits<double>::infinity();
+  const auto rule = tet_rule_degree2();
+  const auto mass_rule = tet_rule_degree5();
+  for (std::size_t e = 0; e < ne; ++e) {
+    const auto& tet = mesh_.tets[e];
+    const auto jacobian = [&](const std::array<std::array<double, 3>, kTetNodes>& G, double Jm[9]) {
+      std::fill(Jm, Jm + 9, 0.0);
+      for (int a = 0; a < kTetNodes; ++a) {
+        const double X[3] = {mesh_.nodes.x[tet[a]], mesh_.nodes.y[tet[a]], mesh_.nodes.z[tet[a]]};
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) Jm[3 * i + j] += X[i] * G[a][j];
+        }
+      }
+    };
+    for (int q = 0; q < kQp; ++q) {
+      const auto& p = rule[q];
+      const auto G = tet10_shape_gradients(p.r, p.s, p.t);
+      double Jm[9];
+      jacobian(G, Jm);
+      const double detJ = det3(Jm);
+      double Jinv_t[9];  // (dX/dxi)^-T: dN/dX = (dX/dxi)^-T dN/dxi
+      inverse_transpose(Jm, detJ, Jinv_t);
+      double* g = &grad_[(e * kQp + q) * kGradStride];
+      for (int a = 0; a < kTetNodes; ++a) {
+        for (int i = 0; i < 3; ++i) {
+          g[3 * a + i] =
+              Jinv_t[3 * i] * G[a][0] + Jinv_t[3 * i + 1] * G[a][1] + Jinv_t[3 * i + 2] * G[a][2];
+        }
+      }
+      weight_[e * kQp + q] = p.weight * detJ;
+    }
+    for (const auto& p : mass_rule) {
+      const auto G = tet10_shape_gradients(p.r, p.s, p.t);
+      const auto N = tet10_shape(p.r, p.s, p.t);
+      double Jm[9];
+      jacobian(G, Jm);
+      const double dV = p.weight * det3(Jm);
+      volume_ += dV;
+      for (int a = 0; a < kTetNodes; ++a) n2[tet[a]] += N[a] * N[a] * dV;
+    }
+    for (int a = 0; a < kTetNodes; ++a) {
+      for (int b = a + 1; b < kTetNodes; ++b) {
+        const int i = tet[a], j = tet[b];
+        min_spacing_ = std::min(min_spacing_, std::hypot(mesh_.nodes.x[i] - mesh_.nodes.x[j],
+                                                         mesh_.nodes.y[i] - mesh_.nodes.y[j],
+                                                         mesh_.nodes.z[i] - mesh_.nodes.z[j]));
+      }
+    }
+  }
+  // The paper's diagonal scaling: m_a proportional to the integral of N_a^2, summing to rho V.
+  total_mass_ = material_.rho * volume_;
+  double sum_n2 = 0.0;
+  for (double v : n2) sum_n2 += v;
+  mass_.resize(nn);
+  for (std::size_t a = 0; a < nn; ++a) mass_[a] = total_mass_ * n2[a] / sum_n2;
+
+  std::vector<char> is_clamped(nn, 0);
+  for (int a : mesh_.clamped) is_clamped[a] = 1;
+  std::vector<char> seen(nn, 0);
+  for (const auto& f : mesh_.inner_faces) {
+    for (int a : f) {
+      if (is_clamped[a] && !seen[a]) {
+        seen[a] = 1;
+        inner_rim_.push_back(a);
+      }
+    }
+  }
+  if (inner_rim_.empty()) {
+    throw mesh::MeshError("no inner face reaches the clamped rim: the cavity is not closed by it");
+  }
+  colours_ = colour_elements(mesh_);
+}
+
+double Body::quadrature_volume() const {
+  double v = 0.0;
+  for (double w : weight_) v += w;
+  return v;
+}
+
+double Body::stable_time_step(double cfl) const {
+  return cfl * min_spacing_ / material_.p_wave_speed();
+}
+
+template <bool kEnergy>
+double Body::element_loop(const mesh::Points& x, mesh::Points* f) const {
+  std::atomic<int> bad{-1};
+  double energy = 0.0;
+  const Material mat = material_;
+  for (const auto& colour : colours_) {
+    const int count = static_cast<int>(colour.size());
+#pragma omp parallel for schedule(static) reduction(+ : energy)
+    for (int k = 0; k < count; ++k) {
+      const int e = colour[k];
+      const auto& tet = mesh_.tets[e];
+      double xe[kTetNodes][3];
+      for (int a = 0; a < kTetNodes; ++a) {
+        xe[a][0] = x.x[tet[a]];
+        xe[a][1] = x.y[tet[a]];
+        xe[a][2] = x.z[tet[a]];
+      }
+      double fe[kTetNodes][3] = {};
+      bool ok = true;
+      for (int q = 0; q < kQp && ok; ++q) {
+        const double* g = &grad_[(static_cast<std::size_t>(e) * kQp + q) * kGradStride];
+        const double w = weight_[static_cast<std::size_t>(e) * kQp + q];
+        double F[9] = {};
+        for (int a = 0; a < kTetNodes; ++a) {
+          for (int i = 0; i < 3; ++i) {
+            F[3 * i + 0] += xe[a][i] * g[3 * a + 0];
+            F[3 * i + 1] += xe[a][i] * g[3 * a + 1];
+            F[3 * i + 2] += xe[a][i] * g[3 * a + 2];
+          }
+        }
+        if constexpr (kEnergy) {
+          const double psi = neo_hookean_energy(mat, F);
+          if (!std::isfinite(psi)) {
+            ok = false;
+            break;
+          }
+          energy += w * psi;
+        } else {
+          double P[9];
+          if (!neo_hookean_stress(mat, F, P)) {
+            ok = false;
+            break;
+          }
+          for (int a = 0; a < kTetNodes; ++a) {
+            for (int i = 0; i < 3; ++i) {
+              fe[a][i] -= w * (P[3 * i] * g[3 * a] + P[3 * i + 1] * g[3 * a + 1] +
+                               P[3 * i + 2] * g[3 * a + 2]);
+            }
+          }
+        }
+      }
+      if (!ok) {
+        int expected = -1;
+        bad.compare_exchange_strong(expected, e);
+        continue;
+      }
+      if constexpr (!kEnergy) {
+        for (int a = 0; a < kTetNodes; ++a) {
+          f->x[tet[a]] += fe[a][0];
+          f->y[tet[a]] += fe[a][1];
+          f->z[tet[a]] += fe[a][2];
+        }
+      }
+    }
+    if (bad.load() >= 0) break;
+  }
+  if (const int e = bad.load(); e >= 0) {
+    const int a = mesh_.tets[e][0];
+    throw InvertedElement(e, x.x[a], x.y[a], x.z[a]);
+  }
+  return energy;
+}
+
+void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {
+  const std::size_t n = num_nodes();
+  f.x.assign(n, 0.0);
+  f.y.assign(n, 0.0);
+  f.z.assign(n, 0.0);
+  element_loop<false>(x, &f);
+}
+
+double Body::strain_energy(const mesh::Points& x) const { return element_loop<true>(x, nullptr); }
+
+namespace {
+
+// Calls visit(face, N, area_vector * weight, position) at each quadrature point of each face;
+// area_vector = dx/dr x dx/ds.
+template <typename Visit>
+void integrate_faces(const std::vector<std::array<int, 6>>& faces, const mesh::Points& x,
+                     Visit&& visit) {
+  const auto rule = tri_rule_degree4();
+  for (const auto& face : faces) {
+    for (const auto& q : rule) {
+      const auto N = tri6_shape(q.r, q.s);
+      const auto G = tri6_shape_gradients(q.r, q.s);
+      double p[3] = {}, dr[3] = {}, ds[3] = {};
+      for (int a = 0; a < kTriNodes; ++a) {
+        const double xa[3] = {x.x[face[a]], x.y[face[a]], x.z[face[a]]};
+        for (int i = 0; i < 3; ++i) {
+          p[i] += N[a] * xa[i];
+          dr[i] += G[a][0] * xa[i];
+          ds[i] += G[a][1] * xa[i];
+        }
+      }
+      const double n[3] = {q.weight * (dr[1] * ds[2] - dr[2] * ds[1]),
+                           q.weight * (dr[2] * ds[0] - dr[0] * ds[2]),
+                           q.weight * (dr[0] * ds[1] - dr[1] * ds[0])};
+      visit(face, N, n, p);
+    }
+  }
+}
+
+}  // namespace
+
+void Body::add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f) const {
+  integrate_faces(mesh_.inner_faces, x,
+                  [&](const auto& face, const auto& N, const double* n, const double*) {
+                    for (int a = 0; a < kTriNodes; ++a) {
+                      f.x[face[a]] -= dp * N[a] * n[0];
+                      f.y[face[a]] -= dp * N[a] * n[1];
+                      f.z[face[a]] -= dp * N[a] * n[2];
+                    }
+                  });
+}
+
+double Body::cavity_volume(const mesh::Points& x) const {
+  // Reference point: the centre of the inner rim circle, which lies in the rim plane, so the
+  // flat lid closing the cavity adds nothing to (1/3) integral of (x - x0) . n dA.
+  double c[3] = {};
+  for (int a : inner_rim_) {
+    c[0] += x.x[a];
+    c[1] += x.y[a];
+    c[2] += x.z[a];
+  }
+  for (double& v : c) v /= static_cast<double>(inner_rim_.size());
+  double volume = 0.0;
+  integrate_faces(mesh_.inner_faces, x,
+                  [&](const auto&, const auto&, const double* n, const double* p) {
+                    volume += (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2];
+                  });
+  return volume / 3.0;
+}
+
+void Body::cavity_volume_gradient(const mesh::Points& x, mesh::Points& g) const {
+  const std::size_t n = num_nodes();
+  g.x.assign(n, 0.0);
+  g.y.assign(n, 0.0);
+  g.z.assign(n, 0.0);
+  add_pressure_forces(x, -1.0, g);
+}
+
+void Body::add_gravity(double g, mesh::Points& f) const {
+  for (std::size_t a = 0; a < mass_.size(); ++a) f.z[a] -= mass_[a] * g;
+}
+
+}  // namespace snapjump::fem

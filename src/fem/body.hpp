@@ -1,0 +1,94 @@
+// The shell as a finite-element body: Total Lagrangian 10-node tetrahedra with the paper's
+// compressible neo-Hookean energy, lumped masses by diagonal scaling, gravity, the pressure
+// follower load on the inner faces and the enclosed cavity volume.
+//
+// The body knows nothing about grids or time stepping: given current node positions it returns
+// forces, energies and volumes. Node data are structure-of-arrays (mesh::Points).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace snapjump::fem {
+
+struct Material {
+  double mu = 0.0;      // shear modulus [Pa]
+  double lambda = 0.0;  // first Lame constant [Pa]
+  double rho = 0.0;     // reference density [kg/m^3]
+  // Lame constants from Young's modulus and Poisson's ratio; needs -1 < nu < 1/2.
+  static Material from_young(double E, double nu, double rho);
+  [[nodiscard]] double p_wave_speed() const;  // sqrt((lambda + 2 mu) / rho)
+};
+
+// psi(F) = mu/2 (tr(F^T F) - 3) - mu ln J + lambda/2 (ln J)^2 and its first Piola stress
+// P = mu (F - F^-T) + lambda ln J F^-T. F row-major 3x3. Return false when det F <= 0.
+bool neo_hookean_stress(const Material& m, const double F[9], double P[9]);
+double neo_hookean_energy(const Material& m, const double F[9]);
+
+// An element turned inside out (det F <= 0) or a non-finite force: the step cannot go on.
+class InvertedElement : public std::runtime_error {
+ public:
+  InvertedElement(int element, double x, double y, double z);
+  int element;
+  double x, y, z;  // current position of its first corner
+};
+
+class Body {
+ public:
+  Body(mesh::Mesh mesh, const Material& material);
+
+  [[nodiscard]] const mesh::Mesh& mesh() const { return mesh_; }
+  [[nodiscard]] const Material& material() const { return material_; }
+  [[nodiscard]] std::size_t num_nodes() const { return mesh_.nodes.size(); }
+  [[nodiscard]] std::size_t num_elements() const { return mesh_.tets.size(); }
+  [[nodiscard]] const std::vector<double>& mass() const { return mass_; }
+  [[nodiscard]] double total_mass() const { return total_mass_; }
+  [[nodiscard]] double reference_volume() const { return volume_; }
+  // The volume as the force quadrature (degree 2) sees it; equals reference_volume() on
+  // straight-sided elements and differs slightly on curved ones.
+  [[nodiscard]] double quadrature_volume() const;
+  // Smallest distance between two nodes of one element, in the reference configuration.
+  [[nodiscard]] double min_node_spacing() const { return min_spacing_; }
+  // dt = cfl * min_node_spacing / p_wave_speed.
+  [[nodiscard]] double stable_time_step(double cfl) const;
+
+  // f = -dW/dx at positions x (overwrites f). Throws InvertedElement.
+  void internal_forces(const mesh::Points& x, mesh::Points& f) const;
+  // Strain energy W at positions x. Throws InvertedElement.
+  [[nodiscard]] double strain_energy(const mesh::Points& x) const;
+
+  // f += the follower load of a pressure difference dp (outside minus inside) on the current
+  // inner faces: f_a = -dp * integral of N_a n dA, n out of the cavity. Equals -dp dV/dx_a.
+  void add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f) const;
+  // Volume between the current inner surface and the plane of its rim (the rim nodes move
+  // rigidly with the container, which keeps that plane flat).
+  [[nodiscard]] double cavity_volume(const mesh::Points& x) const;
+  // g_a = integral over the inner faces of N_a n dA = dV/dx_a for every node off the rim.
+  void cavity_volume_gradient(const mesh::Points& x, mesh::Points& g) const;
+
+  // f_z -= m_a g for every node (gravity on the lumped masses).
+  void add_gravity(double g, mesh::Points& f) const;
+
+  // Element colours: no two elements of one colour share a node (for race-free threads).
+  [[nodiscard]] const std::vector<std::vector<int>>& colours() const { return colours_; }
+
+ private:
+  template <bool kEnergy>
+  double element_loop(const mesh::Points& x, mesh::Points* f) const;
+
+  mesh::Mesh mesh_;
+  Material material_;
+  std::vector<double> grad_;    // [element][qp][node][3] reference shape gradients dN/dX
+  std::vector<double> weight_;  // [element][qp] quadrature weight * det(dX/dxi)
+  std::vector<double> mass_;
+  double total_mass_ = 0.0;
+  double volume_ = 0.0;
+  double min_spacing_ = 0.0;
+  std::vector<int> inner_rim_;  // rim nodes on the inner faces (they span the rim plane)
+  std::vector<std::vector<int>> colours_;
+};
+
+}  // namespace snapjump::fem

@@ -1,0 +1,78 @@
+#include "fem/explicit.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace snapjump::fem {
+
+ExplicitDriver::ExplicitDriver(const Body& body, ExplicitOptions options)
+    : body_(body), options_(std::move(options)) {
+  dt_ = options_.dt > 0.0 ? options_.dt : body_.stable_time_step(options_.cfl);
+  if (!(dt_ > 0.0) || !std::isfinite(dt_))
+    throw std::invalid_argument("explicit driver: bad time step");
+  const std::size_t n = body_.num_nodes();
+  x_ = body_.mesh().nodes;
+  v_.x.assign(n, 0.0);
+  v_.y.assign(n, 0.0);
+  v_.z.assign(n, 0.0);
+  clamped_.assign(n, 0);
+  for (int a : body_.mesh().clamped) clamped_[a] = 1;
+}
+
+void ExplicitDriver::step() {
+  body_.internal_forces(x_, f_);
+  if (options_.pressure) body_.add_pressure_forces(x_, options_.pressure(time_), f_);
+  if (options_.gravity != 0.0) body_.add_gravity(options_.gravity, f_);
+  const auto& m = body_.mass();
+  const double c = options_.damping * dt_ * 0.5;
+  const double a0 = (1.0 - c) / (1.0 + c), a1 = dt_ / (1.0 + c);
+  const std::size_t n = x_.size();
+  const double t_next = time_ + dt_;
+  const double clamp_z = options_.clamp_z ? options_.clamp_z(t_next) : 0.0;
+  const double clamp_vz = options_.clamp_vz ? options_.clamp_vz(t_next) : 0.0;
+  const auto& X = body_.mesh().nodes;
+  bool finite = true;
+#pragma omp parallel for schedule(static) reduction(&& : finite)
+  for (std::size_t a = 0; a < n; ++a) {
+    if (clamped_[a]) {
+      v_.x[a] = 0.0;
+      v_.y[a] = 0.0;
+      v_.z[a] = clamp_vz;
+      x_.x[a] = X.x[a];
+      x_.y[a] = X.y[a];
+      x_.z[a] = X.z[a] + clamp_z;
+      continue;
+    }
+    const double inv_m = 1.0 / m[a];
+    v_.x[a] = a0 * v_.x[a] + a1 * f_.x[a] * inv_m;
+    v_.y[a] = a0 * v_.y[a] + a1 * f_.y[a] * inv_m;
+    v_.z[a] = a0 * v_.z[a] + a1 * f_.z[a] * inv_m;
+    x_.x[a] += dt_ * v_.x[a];
+    x_.y[a] += dt_ * v_.y[a];
+    x_.z[a] += dt_ * v_.z[a];
+    finite = finite && std::isfinite(x_.x[a] + x_.y[a] + x_.z[a]);
+  }
+  if (!finite) throw std::runtime_error("explicit driver: a node position became non-finite");
+  time_ = t_next;
+  ++steps_;
+}
+
+void ExplicitDriver::run_until(double t_end,
+                               const std::function<void(const ExplicitDriver&)>& observe,
+                               int every) {
+  while (time_ < t_end) {
+    step();
+    if (observe && steps_ % every == 0) observe(*this);
+  }
+}
+
+double ExplicitDriver::kinetic_energy() const {
+  const auto& m = body_.mass();
+  double k = 0.0;
+  for (std::size_t a = 0; a < m.size(); ++a) {
+    k += 0.5 * m[a] * (v_.x[a] * v_.x[a] + v_.y[a] * v_.y[a] + v_.z[a] * v_.z[a]);
+  }
+  return k;
+}
+
+}  // namespace snapjump::fem

@@ -1,0 +1,52 @@
+// A plain explicit driver for the body alone: central differences (leapfrog) with optional
+// mass-proportional damping, the rim clamped to a frame that may move along z. Used by the
+// tests and by quasi-static preparation phases.
+#pragma once
+
+#include <functional>
+
+#include "fem/body.hpp"
+
+namespace snapjump::fem {
+
+struct ExplicitOptions {
+  double dt = 0.0;       // time step [s]; 0: stable_time_step(cfl)
+  double cfl = 0.3;      // used when dt = 0
+  double damping = 0.0;  // mass-proportional damping coefficient c [1/s]: m a = f - c m v
+  double gravity = 0.0;  // [m/s^2], acting along -z
+  // Pressure difference (outside minus inside) on the inner faces as a function of time [Pa].
+  std::function<double(double)> pressure;
+  // Displacement of the clamp frame along z as a function of time, and its velocity [m, m/s].
+  std::function<double(double)> clamp_z;
+  std::function<double(double)> clamp_vz;
+};
+
+class ExplicitDriver {
+ public:
+  ExplicitDriver(const Body& body, ExplicitOptions options);
+
+  // Advances one step. Throws InvertedElement; positions and velocities stay as before the step.
+  void step();
+  // Steps until time >= t_end; calls observe(*this) every `every` steps if given.
+  void run_until(double t_end, const std::function<void(const ExplicitDriver&)>& observe = {},
+                 int every = 1);
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] double dt() const { return dt_; }
+  [[nodiscard]] long steps() const { return steps_; }
+  [[nodiscard]] const mesh::Points& positions() const { return x_; }
+  [[nodiscard]] const mesh::Points& velocities() const { return v_; }
+  [[nodiscard]] double kinetic_energy() const;
+  [[nodiscard]] const Body& body() const { return body_; }
+
+ private:
+  const Body& body_;
+  ExplicitOptions options_;
+  double dt_ = 0.0;
+  double time_ = 0.0;
+  long steps_ = 0;
+  mesh::Points x_, v_, f_;
+  std::vector<char> clamped_;
+};
+
+}  // namespace snapjump::fem

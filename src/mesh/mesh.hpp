@@ -1,0 +1,58 @@
+// A quadratic tetrahedral mesh of a shell with the node sets the simulator needs.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace snapjump::mesh {
+
+// Structure of arrays: node a is at (x[a], y[a], z[a]).
+struct Points {
+  std::vector<double> x, y, z;
+  [[nodiscard]] std::size_t size() const { return x.size(); }
+  void resize(std::size_t n) {
+    x.resize(n);
+    y.resize(n);
+    z.resize(n);
+  }
+  void push_back(double px, double py, double pz) {
+    x.push_back(px);
+    y.push_back(py);
+    z.push_back(pz);
+  }
+};
+
+struct Mesh {
+  Points nodes;                                 // reference positions [m]
+  std::vector<std::array<int, 10>> tets;        // 10-node tetrahedra, gmsh node order
+  std::vector<std::array<int, 6>> inner_faces;  // 6-node triangles of the pressurised surface,
+                                                // oriented with the normal out of the cavity
+                                                // (into the material)
+  std::vector<int> clamped;                     // nodes glued to the container (the rim face)
+  std::vector<int> outer;   // nodes of the outer surface (the one that meets the plate)
+  int apex = -1;            // the outer node on the axis, lowest point of the cap
+  std::string description;  // where it came from, for reports
+};
+
+// A mesh that cannot be used. what() says what is wrong and where.
+class MeshError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Checks element validity (positive Jacobian at every node and quadrature point, no degenerate
+// element), index ranges, and that the node sets are present. Throws MeshError naming the
+// element and where it is.
+void check_mesh(const Mesh& m);
+
+// Shifts every node by (0, 0, dz).
+void translate_z(Mesh& m, double dz);
+
+// Faces of the tetrahedra that belong to no other tetrahedron (the boundary), as 6-node
+// triangles oriented outward.
+std::vector<std::array<int, 6>> boundary_faces(const Mesh& m);
+
+}  // namespace snapjump::mesh

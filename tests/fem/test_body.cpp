@@ -1,0 +1,287 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "fem/body.hpp"
+#include "fem/tet10.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "theory/scaling.hpp"
+
+namespace snapjump::fem {
+namespace {
+
+constexpr double kR = 0.030, kH = 0.002;
+const double kPhi = 80.0 * std::numbers::pi / 180.0;
+
+const Body& coarse_cap() {
+  static const Body body(mesh::make_cap_mesh({kR, kH, kPhi, 0.006, 2}),
+                         Material::from_young(1.2e6, 0.45, 1160.0));
+  return body;
+}
+
+mesh::Points map_points(const mesh::Points& X, const double A[9], const double b[3]) {
+  mesh::Points x;
+  for (std::size_t a = 0; a < X.size(); ++a) {
+    x.push_back(A[0] * X.x[a] + A[1] * X.y[a] + A[2] * X.z[a] + b[0],
+                A[3] * X.x[a] + A[4] * X.y[a] + A[5] * X.z[a] + b[1],
+                A[6] * X.x[a] + A[7] * X.y[a] + A[8] * X.z[a] + b[2]);
+  }
+  return x;
+}
+
+double max_abs(const mesh::Points& f) {
+  double m = 0;
+  for (std::size_t a = 0; a < f.size(); ++a) {
+    m = std::max({m, std::abs(f.x[a]), std::abs(f.y[a]), std::abs(f.z[a])});
+  }
+  return m;
+}
+
+TEST(NeoHookean, StressAtIdentityIsZeroAndMatchesEnergyDerivative) {
+  const auto mat = Material::from_young(1.2e6, 0.45, 1160.0);
+  const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+  double P[9];
+  ASSERT_TRUE(neo_hookean_stress(mat, I, P));
+  for (double p : P) EXPECT_NEAR(p, 0.0, 1e-9);
+  EXPECT_NEAR(neo_hookean_energy(mat, I), 0.0, 1e-12);
+  // P = d psi / dF by central differences at a general F
+  const double F[9] = {1.1, 0.05, -0.02, 0.03, 0.95, 0.04, -0.01, 0.02, 1.05};
+  ASSERT_TRUE(neo_hookean_stress(mat, F, P));
+  for (int k = 0; k < 9; ++k) {
+    double Fp[9], Fm[9];
+    std::copy(F, F + 9, Fp);
+    std::copy(F, F + 9, Fm);
+    Fp[k] += 1e-7;
+    Fm[k] -= 1e-7;
+    const double d = (neo_hookean_energy(mat, Fp) - neo_hookean_energy(mat, Fm)) / 2e-7;
+    EXPECT_NEAR(P[k], d, 1e-6 * mat.mu) << k;
+  }
+  // small strain: P = 2 mu eps + lambda tr(eps) I; uniaxial stretch 1e-6 gives sigma_xx = (lambda +
+  // 2 mu) eps
+  const double Fs[9] = {1 + 1e-6, 0, 0, 0, 1, 0, 0, 0, 1};
+  ASSERT_TRUE(neo_hookean_stress(mat, Fs, P));
+  EXPECT_NEAR(P[0], (mat.lambda + 2 * mat.mu) * 1e-6, 1e-5 * (mat.lambda + 2 * mat.mu) * 1e-6);
+  // Lame constants of E = 1.2 MPa, nu = 0.45: mu = E / 2.9 = 413793.1, lambda = 3.7241379e6
+  EXPECT_NEAR(mat.mu, 413793.103, 1e-3);
+  EXPECT_NEAR(mat.lambda, 3724137.93, 1e-2);
+  // an inverted F is refused
+  const double Finv[9] = {-1, 0, 0, 0, 1, 0, 0, 0, 1};
+  EXPECT_FALSE(neo_hookean_stress(mat, Finv, P));
+}
+
+TEST(Body, RejectsIncompressibleNu) {
+  EXPECT_THROW((void)Material::from_young(1.2e6, 0.5, 1160.0), std::invalid_argument);
+}
+
+TEST(Body, LumpedMassesArePositiveAndSumToRhoV) {
+  const auto& body = coarse_cap();
+  double sum = 0.0;
+  for (double m : body.mass()) {
+    EXPECT_GT(m, 0.0);
+    sum += m;
+  }
+  EXPECT_NEAR(sum, 1160.0 * body.reference_volume(), 1e-12 * sum);
+  EXPECT_NEAR(body.total_mass(), sum, 1e-12 * sum);
+}
+
+TEST(Body, MeshedVolumeMatchesTheCap) {
+  const auto& body = coarse_cap();
+  const double exact = theory::shell_volume(kR, kH, kPhi);
+  EXPECT_NEAR(body.reference_volume() / exact, 1.0, 0.01);
+  const double cavity = body.cavity_volume(body.mesh().nodes);
+  EXPECT_NEAR(cavity / theory::cavity_volume(kR, kH, kPhi), 1.0, 0.01);
+}
+
+TEST(Body, RigidMotionGivesZeroForceAndEnergy) {
+  const auto& body = coarse_cap();
+  const double c = std::cos(0.7), s = std::sin(0.7);
+  const double Q[9] = {c, -s, 0, s, c, 0, 0, 0, 1};  // rotation about z, then about x below
+  const double Rx[9] = {1, 0, 0, 0, std::cos(0.3), -std::sin(0.3), 0, std::sin(0.3), std::cos(0.3)};
+  double A[9] = {};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j)
+      for (int k = 0; k < 3; ++k) A[3 * i + j] += Rx[3 * i + k] * Q[3 * k + j];
+  const double b[3] = {0.01, -0.02, 0.005};
+  const auto x = map_points(body.mesh().nodes, A, b);
+  mesh::Points f;
+  body.internal_forces(x, f);
+  // Scale: the force of a 1e-3 strain on one element's worth of area.
+  const double scale = body.material().mu * 1e-3 * 1e-6;
+  EXPECT_LT(max_abs(f), 1e-6 * scale);
+  EXPECT_NEAR(body.strain_energy(x), 0.0, 1e-12);
+}
+
+// Patch test: an affine deformation x = A X + b has uniform F = A. The nodal forces then satisfy
+// sum_a f_a (x) X_a = -P(A) V exactly, with P the analytic neo-Hookean stress, and interior
+// nodes carry no force.
+TEST(Body, AffinePatchTestReproducesTheAnalyticStress) {
+  const auto& body = coarse_cap();
+  const double A[9] = {1.02, 0.01, -0.005, 0.003, 0.99, 0.012, -0.004, 0.006, 1.015};
+  const double b[3] = {0.001, 0.002, -0.003};
+  const auto x = map_points(body.mesh().nodes, A, b);
+  mesh::Points f;
+  body.internal_forces(x, f);
+  double P[9];
+  ASSERT_TRUE(neo_hookean_stress(body.material(), A, P));
+  const auto& X = body.mesh().nodes;
+  double moment[9] = {};
+  for (std::size_t a = 0; a < X.size(); ++a) {
+    const double fa[3] = {f.x[a], f.y[a], f.z[a]}, Xa[3] = {X.x[a], X.y[a], X.z[a]};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) moment[3 * i + j] += fa[i] * Xa[j];
+  }
+  // The identity holds for the volume the force quadrature integrates (curved elements make it
+  // differ from the exact volume by a few 1e-6).
+  const double V = body.quadrature_volume();
+  EXPECT_NEAR(V / body.reference_volume(), 1.0, 1e-4);
+  double pmax = 0;
+  for (double p : P) pmax = std::max(pmax, std::abs(p));
+  for (int k = 0; k < 9; ++k) EXPECT_NEAR(moment[k], -P[k] * V, 1e-9 * pmax * V) << k;
+}
+
+// On straight-sided elements (edge nodes at the chord midpoints) the degree-2 rule integrates
+// the gradients exactly, so under an affine deformation every interior node is free of force.
+TEST(Body, AffinePatchTestLeavesInteriorNodesFreeOnStraightElements) {
+  auto m = coarse_cap().mesh();
+  for (const auto& tet : m.tets) {
+    for (int e = 0; e < 6; ++e) {
+      const int mid = tet[4 + e], i = tet[kTetEdges[e][0]], j = tet[kTetEdges[e][1]];
+      m.nodes.x[mid] = 0.5 * (m.nodes.x[i] + m.nodes.x[j]);
+      m.nodes.y[mid] = 0.5 * (m.nodes.y[i] + m.nodes.y[j]);
+      m.nodes.z[mid] = 0.5 * (m.nodes.z[i] + m.nodes.z[j]);
+    }
+  }
+  const Body body(m, coarse_cap().material());
+  EXPECT_NEAR(body.quadrature_volume() / body.reference_volume(), 1.0, 1e-13);
+  const double A[9] = {1.02, 0.01, -0.005, 0.003, 0.99, 0.012, -0.004, 0.006, 1.015};
+  const double b[3] = {0.001, 0.002, -0.003};
+  const auto x = map_points(body.mesh().nodes, A, b);
+  mesh::Points f;
+  body.internal_forces(x, f);
+  std::vector<char> boundary(x.size(), 0);
+  for (const auto& face : mesh::boundary_faces(body.mesh())) {
+    for (int a : face) boundary[a] = 1;
+  }
+  int interior = 0;
+  const double fscale = max_abs(f);
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    if (boundary[a]) continue;
+    ++interior;
+    EXPECT_LT(std::abs(f.x[a]) + std::abs(f.y[a]) + std::abs(f.z[a]), 1e-9 * fscale) << a;
+  }
+  EXPECT_GT(interior, 10);
+}
+
+TEST(Body, ForcesAreMinusTheEnergyGradient) {
+  const auto& body = coarse_cap();
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 2e-5);
+  auto x = body.mesh().nodes;
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    x.x[a] += noise(rng);
+    x.y[a] += noise(rng);
+    x.z[a] += noise(rng);
+  }
+  mesh::Points f;
+  body.internal_forces(x, f);
+  std::uniform_int_distribution<int> pick(0, static_cast<int>(x.size()) - 1);
+  const double h = 1e-7;
+  for (int k = 0; k < 20; ++k) {
+    const int a = pick(rng);
+    auto xp = x, xm = x;
+    xp.z[a] += h;
+    xm.z[a] -= h;
+    const double dW = (body.strain_energy(xp) - body.strain_energy(xm)) / (2 * h);
+    EXPECT_NEAR(f.z[a], -dW, 1e-5 * std::abs(dW) + 1e-6 * max_abs(f)) << "node " << a;
+    xp = x;
+    xm = x;
+    xp.x[a] += h;
+    xm.x[a] -= h;
+    const double dWx = (body.strain_energy(xp) - body.strain_energy(xm)) / (2 * h);
+    EXPECT_NEAR(f.x[a], -dWx, 1e-5 * std::abs(dWx) + 1e-6 * max_abs(f)) << "node " << a;
+  }
+}
+
+TEST(Body, PressureLoadIsDeltaPTimesVolumeGradient) {
+  const auto& body = coarse_cap();
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 3e-5);
+  auto x = body.mesh().nodes;
+  std::vector<char> clamped(x.size(), 0);
+  for (int a : body.mesh().clamped) clamped[a] = 1;
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    if (clamped[a]) continue;
+    x.x[a] += noise(rng);
+    x.y[a] += noise(rng);
+    x.z[a] += noise(rng);
+  }
+  mesh::Points g, f;
+  body.cavity_volume_gradient(x, g);
+  f.x.assign(x.size(), 0.0);
+  f.y.assign(x.size(), 0.0);
+  f.z.assign(x.size(), 0.0);
+  const double dp = 1234.5;
+  body.add_pressure_forces(x, dp, f);
+  int checked = 0;
+  for (const auto& face : body.mesh().inner_faces) {
+    for (int a : face) {
+      if (clamped[a] || checked >= 40) continue;
+      ++checked;
+      EXPECT_NEAR(f.z[a], -dp * g.z[a], 1e-12);
+      const double h = 1e-7;
+      auto xp = x, xm = x;
+      xp.z[a] += h;
+      xm.z[a] -= h;
+      const double dV = (body.cavity_volume(xp) - body.cavity_volume(xm)) / (2 * h);
+      EXPECT_NEAR(g.z[a], dV, 1e-7 * std::abs(dV) + 1e-12) << "node " << a;
+      xp = x;
+      xm = x;
+      xp.y[a] += h;
+      xm.y[a] -= h;
+      const double dVy = (body.cavity_volume(xp) - body.cavity_volume(xm)) / (2 * h);
+      EXPECT_NEAR(g.y[a], dVy, 1e-7 * std::abs(dVy) + 1e-12) << "node " << a;
+    }
+  }
+  EXPECT_EQ(checked, 40);
+}
+
+TEST(Body, InvertedElementIsReportedWithItsPlace) {
+  const auto& body = coarse_cap();
+  auto x = body.mesh().nodes;
+  const auto& tet = body.mesh().tets[5];
+  // reflect a corner through the centroid c of the opposite face: x0 -> 2 c - x0
+  const auto reflect = [&](std::vector<double>& v) {
+    v[tet[0]] = 2.0 * (v[tet[1]] + v[tet[2]] + v[tet[3]]) / 3.0 - v[tet[0]];
+  };
+  reflect(x.x);
+  reflect(x.y);
+  reflect(x.z);
+  mesh::Points f;
+  try {
+    body.internal_forces(x, f);
+    FAIL() << "expected InvertedElement";
+  } catch (const InvertedElement& e) {
+    EXPECT_NE(std::string(e.what()).find("inverted"), std::string::npos);
+  }
+}
+
+TEST(Body, ColoursShareNoNode) {
+  const auto& body = coarse_cap();
+  std::size_t total = 0;
+  for (const auto& colour : body.colours()) {
+    std::vector<char> used(body.num_nodes(), 0);
+    for (int e : colour) {
+      for (int a : body.mesh().tets[e]) {
+        EXPECT_FALSE(used[a]);
+        used[a] = 1;
+      }
+    }
+    total += colour.size();
+  }
+  EXPECT_EQ(total, body.num_elements());
+}
+
+}  // namespace
+}  // namespace snapjump::fem

@@ -1,0 +1,193 @@
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <numbers>
+
+#include "mesh/cap_mesher.hpp"
+#include "mesh/msh_reader.hpp"
+
+namespace snapjump::mesh {
+namespace {
+
+constexpr double kR = 0.030, kH = 0.002;
+const double kPhi = 80.0 * std::numbers::pi / 180.0;
+
+const Mesh& cap() {
+  static const Mesh m = make_cap_mesh({kR, kH, kPhi, 0.006, 2});
+  return m;
+}
+
+double radius(const Mesh& m, int a) { return std::hypot(m.nodes.x[a], m.nodes.y[a], m.nodes.z[a]); }
+double polar(const Mesh& m, int a) { return std::acos(-m.nodes.z[a] / radius(m, a)); }
+
+std::filesystem::path temp_file(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_mesh_test";
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+void expect_mesh_error(const std::function<void()>& f, const std::string& fragment) {
+  try {
+    f();
+    FAIL() << "expected MeshError containing: " << fragment;
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(CapMesh, NodeSetsLieWhereTheyShould) {
+  const auto& m = cap();
+  ASSERT_FALSE(m.tets.empty());
+  for (int a : m.clamped) EXPECT_NEAR(polar(m, a), kPhi, 1e-9) << a;
+  for (int a : m.outer) EXPECT_NEAR(radius(m, a), kR + kH / 2, 1e-12) << a;
+  for (const auto& f : m.inner_faces) {
+    for (int a : f) EXPECT_NEAR(radius(m, a), kR - kH / 2, 1e-12);
+  }
+  EXPECT_NEAR(m.nodes.x[m.apex], 0.0, 1e-12);
+  EXPECT_NEAR(m.nodes.y[m.apex], 0.0, 1e-12);
+  EXPECT_NEAR(m.nodes.z[m.apex], -(kR + kH / 2), 1e-12);
+  // every node lies within the shell
+  for (std::size_t a = 0; a < m.nodes.size(); ++a) {
+    EXPECT_LE(radius(m, static_cast<int>(a)), kR + kH / 2 + 1e-12);
+    EXPECT_GE(radius(m, static_cast<int>(a)), kR - kH / 2 - 1e-12);
+    EXPECT_LE(polar(m, static_cast<int>(a)), kPhi + 1e-9);
+  }
+}
+
+TEST(CapMesh, LayersThroughTheThickness) {
+  // With 2 layers, the vertex radii take the values R - h/2, R, R + h/2 (and edge nodes between).
+  const auto& m = cap();
+  int mid = 0;
+  for (std::size_t a = 0; a < m.nodes.size(); ++a) {
+    if (std::abs(radius(m, static_cast<int>(a)) - kR) < 1e-12) ++mid;
+  }
+  EXPECT_GT(mid, 0);
+  const Mesh one = make_cap_mesh({kR, kH, kPhi, 0.006, 1});
+  EXPECT_EQ(one.tets.size() * 2, m.tets.size());
+}
+
+TEST(CapMesh, BoundaryIsInnerOuterAndRim) {
+  const auto& m = cap();
+  std::vector<char> clamped(m.nodes.size(), 0);
+  for (int a : m.clamped) clamped[a] = 1;
+  std::size_t inner = 0, outer = 0, rim = 0;
+  for (const auto& f : boundary_faces(m)) {
+    const double r = radius(m, f[0]) + radius(m, f[1]) + radius(m, f[2]);
+    if (std::abs(r / 3 - (kR - kH / 2)) < 1e-12)
+      ++inner;
+    else if (std::abs(r / 3 - (kR + kH / 2)) < 1e-12)
+      ++outer;
+    else if (clamped[f[0]] && clamped[f[1]] && clamped[f[2]])
+      ++rim;
+    else
+      ADD_FAILURE() << "a boundary face that is neither inner, outer nor rim";
+  }
+  EXPECT_EQ(inner, m.inner_faces.size());
+  EXPECT_EQ(outer, m.inner_faces.size());
+  EXPECT_GT(rim, 0u);
+}
+
+TEST(CapMesh, BadSpecIsRefused) {
+  expect_mesh_error([] { (void)make_cap_mesh({kR, kR, kPhi, 0.006, 2}); }, "0 < h < R");
+  expect_mesh_error([] { (void)make_cap_mesh({kR, kH, kPhi, 0.0, 2}); }, "element_size > 0");
+  expect_mesh_error([] { (void)make_cap_mesh({kR, kH, kPhi, 0.5, 2}); }, "too coarse");
+}
+
+// One straight-sided tetrahedron with its node sets, for element checks.
+Mesh one_tet() {
+  Mesh m;
+  const double xyz[10][3] = {{0, 0, 0},   {1, 0, 0},  {0, 1, 0},  {0, 0, 1},   {.5, 0, 0},
+                             {.5, .5, 0}, {0, .5, 0}, {0, 0, .5}, {0, .5, .5}, {.5, 0, .5}};
+  for (const auto& p : xyz) m.nodes.push_back(p[0], p[1], p[2]);
+  m.tets.push_back({0, 1, 2, 3, 4, 5, 6, 7, 8, 9});
+  m.inner_faces.push_back({0, 2, 1, 6, 5, 4});
+  m.clamped = {0, 1, 2};
+  m.outer = {3};
+  m.apex = 3;
+  return m;
+}
+
+TEST(MeshCheck, InvertedAndDegenerateElementsAreNamed) {
+  EXPECT_NO_THROW(check_mesh(one_tet()));
+  auto inverted = one_tet();
+  inverted.nodes.z[3] = -1.0;
+  inverted.nodes.z[7] = inverted.nodes.z[8] = inverted.nodes.z[9] = -0.5;
+  expect_mesh_error([&] { check_mesh(inverted); }, "is inverted");
+  auto flat = one_tet();
+  flat.nodes.z[3] = 0.0;
+  flat.nodes.z[7] = flat.nodes.z[8] = flat.nodes.z[9] = 0.0;
+  expect_mesh_error([&] { check_mesh(flat); }, "is degenerate");
+  auto bent = one_tet();
+  bent.nodes.x[4] = 1.4;  // edge node of (0,1) pushed beyond corner 1
+  expect_mesh_error([&] { check_mesh(bent); }, "is distorted");
+  // and in a real mesh, the element is named
+  auto m = cap();
+  std::swap(m.tets[3][1], m.tets[3][2]);
+  std::swap(m.tets[3][4], m.tets[3][6]);
+  std::swap(m.tets[3][8], m.tets[3][9]);
+  expect_mesh_error([&] { check_mesh(m); }, "element 3 ");
+}
+
+TEST(Msh, RoundTripKeepsMeshAndGroups) {
+  const auto& m = cap();
+  const auto path = temp_file("cap.msh");
+  write_msh(m, path);
+  const Mesh r = read_msh(path);
+  EXPECT_EQ(r.nodes.size(), m.nodes.size());
+  EXPECT_EQ(r.tets.size(), m.tets.size());
+  EXPECT_EQ(r.inner_faces.size(), m.inner_faces.size());
+  EXPECT_EQ(r.clamped.size(), m.clamped.size());
+  EXPECT_EQ(r.outer.size(), m.outer.size());
+  EXPECT_NEAR(r.nodes.z[r.apex], -(kR + kH / 2), 1e-12);
+  // inner faces keep the orientation out of the cavity (away from the centre)
+  for (const auto& f : r.inner_faces) {
+    const double u[3] = {r.nodes.x[f[1]] - r.nodes.x[f[0]], r.nodes.y[f[1]] - r.nodes.y[f[0]],
+                         r.nodes.z[f[1]] - r.nodes.z[f[0]]};
+    const double v[3] = {r.nodes.x[f[2]] - r.nodes.x[f[0]], r.nodes.y[f[2]] - r.nodes.y[f[0]],
+                         r.nodes.z[f[2]] - r.nodes.z[f[0]]};
+    const double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                         u[0] * v[1] - u[1] * v[0]};
+    EXPECT_GT(n[0] * r.nodes.x[f[0]] + n[1] * r.nodes.y[f[0]] + n[2] * r.nodes.z[f[0]], 0.0);
+  }
+}
+
+// A one-element .msh 4.1 file; `type` 4 (linear) or 11 (quadratic), with or without groups.
+std::string one_tet_msh(bool quadratic, bool groups) {
+  const int nn = quadratic ? 10 : 4;
+  std::string s = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n";
+  if (groups) s += "$PhysicalNames\n1\n2 1 \"inner\"\n$EndPhysicalNames\n";
+  s += fmt::format("$Entities\n0 0 1 1\n1 0 0 0 1 1 1 {} 0\n1 0 0 0 1 1 1 0 0\n$EndEntities\n",
+                   groups ? "1 1" : "0");
+  s += fmt::format("$Nodes\n1 {0} 1 {0}\n3 1 0 {0}\n", nn);
+  for (int i = 1; i <= nn; ++i) s += fmt::format("{}\n", i);
+  const char* xyz[10] = {"0 0 0",     "1 0 0",   "0 1 0",   "0 0 1",     "0.5 0 0",
+                         "0.5 0.5 0", "0 0.5 0", "0 0 0.5", "0 0.5 0.5", "0.5 0 0.5"};
+  for (int i = 0; i < nn; ++i) s += fmt::format("{}\n", xyz[i]);
+  s += fmt::format("$EndNodes\n$Elements\n1 1 1 1\n3 1 {} 1\n1", quadratic ? 11 : 4);
+  for (int i = 1; i <= nn; ++i) s += fmt::format(" {}", i);
+  s += "\n$EndElements\n";
+  return s;
+}
+
+TEST(Msh, LinearTetrahedraAreRefused) {
+  const auto path = temp_file("linear.msh");
+  std::ofstream(path) << one_tet_msh(false, false);
+  expect_mesh_error([&] { (void)read_msh(path); }, "linear 4-node tetrahedra");
+}
+
+TEST(Msh, MissingGroupsAreNamed) {
+  const auto path = temp_file("nogroups.msh");
+  std::ofstream(path) << one_tet_msh(true, false);
+  expect_mesh_error([&] { (void)read_msh(path); }, "no surface physical group named 'inner'");
+}
+
+TEST(Msh, MissingFile) {
+  expect_mesh_error([] { (void)read_msh("/nonexistent/x.msh"); }, "no such mesh file");
+}
+
+}  // namespace
+}  // namespace snapjump::mesh
