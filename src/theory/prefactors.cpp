@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "contact/contact.hpp"
+
 namespace snapjump::theory {
-namespace {
 
 // The paper's supplement quotes N+ = 76.94, N- = 46.8 and n(2) = 20.83, and at nu = 1/2
 // (kappa = 9) the ranges 1.2 < alpha_r < 1.6 and 1.8 < alpha_e < 4.5. The contact radius and
@@ -13,9 +16,8 @@ namespace {
 // nu = 1/2 returns the paper's alpha_r and alpha_e. alpha_F follows from N: 46.8 / 9 = 5.2 and
 // 76.94 / 9 = 8.55, where the paper rounds to 5.3 and 8.5.
 //
-// Mirror-buckling energy: integrating the paper's ring law F = E h^3 n2 sqrt(e/h) /
-// (kappa^(3/4) R) over the apex displacement from 0 to d gives
-// U = (2/3) n2 E h^(5/2) d^(3/2) / (kappa^(3/4) R), i.e. C = (2/3) n2 / 12^(3/4).
+// Mirror-buckling energy: the paper gives no prefactor; the ridge energy U = pi a^3 I with the
+// paper's n2 = 3 pi I, written with the cap height, gives C = 2^(3/2) n2 / (3 12^(3/4)).
 ContactConstants paper_constants() {
   constexpr double kappa_half = 9.0;  // kappa at nu = 1/2
   const double quarter = std::pow(kappa_half, 0.25);
@@ -24,17 +26,27 @@ ContactConstants paper_constants() {
   c.lower = ContactPoint{1.2 * quarter, 1.8 * half, 46.8};
   c.upper = ContactPoint{1.6 * quarter, 4.5 * half, 76.94};
   c.n2 = 20.83;
-  c.mirror_energy_prefactor = 2.0 / 3.0 * c.n2 / std::pow(12.0, 0.75);
+  c.mirror_energy_prefactor = std::pow(2.0, 1.5) * c.n2 / (3.0 * std::pow(12.0, 0.75));
   c.source =
       "paper's published constants (N+ = 76.94, N- = 46.8, n(2) = 20.83; contact radius and "
       "apex displacement from its nu = 1/2 ranges)";
   return c;
 }
 
-}  // namespace
+ContactConstants from_solver(const contact::Constants& s) {
+  ContactConstants c;
+  c.lower = ContactPoint{s.a_minus, s.e_hat_minus, s.N_minus};
+  c.upper = ContactPoint{s.a_plus, s.e_hat_ring_law_at_plus, s.N_plus};
+  c.n2 = s.n2;
+  c.mirror_energy_prefactor = s.mirror_energy_prefactor_cap_height;
+  c.source = fmt::format(
+      "shell-plane contact solver: N+ = {:.4f}, N- = {:.4f}, n(2) = {:.4f} (snapjump contact)",
+      s.N_plus, s.N_minus, s.n2);
+  return c;
+}
 
 const ContactConstants& contact_constants() {
-  static const ContactConstants constants = paper_constants();
+  static const ContactConstants constants = from_solver(contact::compute_constants());
   return constants;
 }
 

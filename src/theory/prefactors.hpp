@@ -8,6 +8,10 @@
 
 #include <string>
 
+namespace snapjump::contact {
+struct Constants;
+}
+
 namespace snapjump::theory {
 
 // A point of the shell-plane contact problem in rescaled units.
@@ -19,17 +23,29 @@ struct ContactPoint {
 
 struct ContactConstants {
   ContactPoint lower;  // ring-to-disk estimate: the disk branch meets the ring law (N-)
-  ContactPoint upper;  // end of the disk branch, where the contact disk buckles (N+)
+  ContactPoint upper;  // the disk instability N+ (contact radius of the disk there; apex
+                       // displacement of the ring state that carries N+, see docs/theory.md)
   double n2 = 0.0;     // ring law N = n2 sqrt(e_hat) in the paper's form
-  // C in U = C E h^(5/2) d^(3/2) / ((1 - nu^2)^(3/4) R), the stored energy of a mirror-buckled
-  // cap whose apex moved by d.
+  // C in U = C E h^(5/2) H^(3/2) / ((1 - nu^2)^(3/4) R), the stored energy of a mirror-buckled
+  // cap of height H (for the fully inverted cap, H = R (1 - cos phi)).
   double mirror_energy_prefactor = 0.0;
   std::string source;  // where these numbers come from, for reports
 };
 
-// The constants in force. Until the contact solver lands these are the paper's published values
-// (see prefactors.cpp); the solver will replace this single function.
+// The constants in force: computed once per process by the shell-plane contact solver
+// (about a second) and kept.
 const ContactConstants& contact_constants();
+
+// The mapping from the solver's numbers to the two bounding points. The lower point is the
+// crossing of the disk branch with the paper's ring law (x = disk contact radius there); the
+// upper point takes N+ and the disk contact radius at N+, and the apex displacement that the
+// ring law assigns to the force N+, e_hat = (N+ / n2)^2, which is how the paper's range
+// 1.8 < alpha_e < 4.5 arises (the disk branch itself ends at e_hat = 7.46).
+ContactConstants from_solver(const contact::Constants& c);
+
+// The paper's published constants (N+ = 76.94, N- = 46.8, n(2) = 20.83, with the contact
+// radius and displacement recovered from its nu = 1/2 ranges), for comparison.
+ContactConstants paper_constants();
 
 struct Range {
   double lo = 0.0;

@@ -74,8 +74,10 @@ TEST(Heights, MirrorEnergy) {
   EXPECT_NEAR(mirror_energy(2.0, 1.2e6, 0.002, 0.01, 0.5, 0.030), 0.0177570, 1e-6);
 }
 
+// These use the paper's published constants so that the hand computations stay independent of
+// the contact solver; tests/contact checks the solver's own numbers.
 TEST(Prefactors, PapersRangesAtNuOneHalf) {
-  const auto p = prefactor_bounds(contact_constants(), 0.5);
+  const auto p = prefactor_bounds(paper_constants(), 0.5);
   // The paper: 1.2 < alpha_r < 1.6, 1.8 < alpha_e < 4.5, alpha_F = N / 9 with N- = 46.8, N+ = 76.94
   EXPECT_NEAR(p.alpha_r.lo, 1.2, 1e-12);
   EXPECT_NEAR(p.alpha_r.hi, 1.6, 1e-12);
@@ -92,7 +94,7 @@ TEST(Prefactors, ConvertedAtAnotherNu) {
   // nu = 0.45: kappa = 12 * 0.7975 = 9.57; alpha_F = 46.8 / 9.57 = 4.89028, 76.94 / 9.57 = 8.03971
   // alpha_e = 5.4 / sqrt(9.57) = 1.74557; alpha_r = 1.2 sqrt(3) / 9.57^0.25 = 1.18172
   EXPECT_NEAR(kappa(0.45), 9.57, 1e-12);
-  const auto p = prefactor_bounds(contact_constants(), 0.45);
+  const auto p = prefactor_bounds(paper_constants(), 0.45);
   EXPECT_NEAR(p.alpha_F.lo, 4.89028, 1e-5);
   EXPECT_NEAR(p.alpha_F.hi, 8.03971, 1e-5);
   EXPECT_NEAR(p.alpha_e.lo, 1.74557, 1e-5);
@@ -107,7 +109,7 @@ config::Case default_case_with(double net_weight) {
 }
 
 TEST(Predict, DefaultPopperJumps) {
-  const auto p = predict(config::default_case(), contact_constants());
+  const auto p = predict(config::default_case(), paper_constants());
   // F* = (4.89 .. 8.04) * 0.32 N = 1.565 .. 2.573 N against mg = 0.48 N
   EXPECT_NEAR(p.F_star.lo, 1.56489, 1e-4);
   EXPECT_NEAR(p.F_star.hi, 2.57271, 1e-4);
@@ -129,16 +131,17 @@ TEST(Predict, DefaultPopperJumps) {
 
 TEST(Predict, HeavierPopperSnapsThenStopsSnapping) {
   // F*_hi = 2.573 N: above that weight no jump within the bounds.
-  const auto snap = predict(default_case_with(3.0), contact_constants());
+  const auto snap = predict(default_case_with(3.0), paper_constants());
   EXPECT_FALSE(snap.outcome.jump);
   EXPECT_TRUE(snap.outcome.snap);
   EXPECT_EQ(snap.outcome.text(), "Snap");
   // Between F*_lo and F*_hi either may happen.
-  const auto either = predict(default_case_with(2.0), contact_constants());
+  const auto either = predict(default_case_with(2.0), paper_constants());
   EXPECT_EQ(either.outcome.text(), "Jump or Snap");
   EXPECT_FALSE(either.outcome.certain());
-  // U = 0.0713 J against mg H_l with H_l <= 21.3 mm: no snap above 0.0713 / 0.016 = 4.4 N
-  const auto heavy = predict(default_case_with(10.0), contact_constants());
+  // U = 0.1008 J (C = 3.046) against mg H_l with H_l = 16.1 .. 21.3 mm: certainly no snap above
+  // 0.1008 / 0.0161 = 6.3 N
+  const auto heavy = predict(default_case_with(10.0), paper_constants());
   EXPECT_EQ(heavy.outcome.text(), "No snap");
   EXPECT_LT(heavy.snap_margin.hi, 1.0);
 }
