@@ -216,7 +216,6 @@ struct Constants {
 // The prefactor bounds that follow from these numbers at a given nu are computed by
 // theory::prefactor_bounds (src/theory/prefactors.hpp), from theory::from_solver(constants).
 
-
 // CSV, header "branch,a,N,e_hat,c1,residual,min_gap" then one line per point ("disk" then
 // "ring" rows); c1 is empty on ring rows.  Rescaled units.
 void write_curves_csv(std::ostream& os, const std::vector<DiskPoint>& disk,

@@ -17,6 +17,9 @@ ExplicitDriver::ExplicitDriver(const Body& body, ExplicitOptions options)
   v_.z.assign(n, 0.0);
   clamped_.assign(n, 0);
   for (int a : body_.mesh().clamped) clamped_[a] = 1;
+  if (options_.clamp_displacement) {
+    for (int a : body_.mesh().clamped) clamp_offset_[a] = options_.clamp_displacement(a);
+  }
 }
 
 void ExplicitDriver::step() {
@@ -35,12 +38,15 @@ void ExplicitDriver::step() {
 #pragma omp parallel for schedule(static) reduction(&& : finite)
   for (std::size_t a = 0; a < n; ++a) {
     if (clamped_[a]) {
+      const auto it = clamp_offset_.find(static_cast<int>(a));
+      const std::array<double, 3> u =
+          it == clamp_offset_.end() ? std::array<double, 3>{0.0, 0.0, clamp_z} : it->second;
       v_.x[a] = 0.0;
       v_.y[a] = 0.0;
-      v_.z[a] = clamp_vz;
-      x_.x[a] = X.x[a];
-      x_.y[a] = X.y[a];
-      x_.z[a] = X.z[a] + clamp_z;
+      v_.z[a] = it == clamp_offset_.end() ? clamp_vz : 0.0;
+      x_.x[a] = X.x[a] + u[0];
+      x_.y[a] = X.y[a] + u[1];
+      x_.z[a] = X.z[a] + u[2];
       continue;
     }
     const double inv_m = 1.0 / m[a];

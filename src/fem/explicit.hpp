@@ -3,7 +3,9 @@
 // tests and by quasi-static preparation phases.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <unordered_map>
 
 #include "fem/body.hpp"
 
@@ -19,6 +21,9 @@ struct ExplicitOptions {
   // Displacement of the clamp frame along z as a function of time, and its velocity [m, m/s].
   std::function<double(double)> clamp_z;
   std::function<double(double)> clamp_vz;
+  // Instead of the rigid z motion: a fixed displacement of each clamped node (node index ->
+  // displacement), e.g. an exact solution imposed on the rim for a validation.
+  std::function<std::array<double, 3>(int)> clamp_displacement;
 };
 
 class ExplicitDriver {
@@ -47,6 +52,7 @@ class ExplicitDriver {
   long steps_ = 0;
   mesh::Points x_, v_, f_;
   std::vector<char> clamped_;
+  std::unordered_map<int, std::array<double, 3>> clamp_offset_;  // from clamp_displacement
 };
 
 }  // namespace snapjump::fem

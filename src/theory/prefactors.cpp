@@ -1,9 +1,9 @@
 #include "theory/prefactors.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "contact/contact.hpp"
 

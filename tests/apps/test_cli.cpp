@@ -131,3 +131,38 @@ TEST(Cli, UnknownFormat) {
 
 }  // namespace
 }  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+TEST(Cli, ContactPrintsTheComputedConstantsAndBounds) {
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_curves.csv";
+  std::filesystem::remove(path);
+  const auto r = run({"contact", "--nu", "0.5", "--format", "json", "--curves", path.string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  // The paper's N+ = 76.94 and, at nu = 1/2, 1.2 < alpha_r < 1.6.
+  EXPECT_NEAR(doc["N_plus"]["N"].get<double>(), 76.94, 0.01 * 76.94);
+  EXPECT_NEAR(doc["bounds"]["alpha_r"]["lower"].get<double>(), 1.2, 0.05);
+  EXPECT_NEAR(doc["bounds"]["alpha_r"]["upper"].get<double>(), 1.6, 0.05);
+  std::ifstream csv(path);
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "branch,a,N,e_hat,c1,residual,min_gap");
+  int disk = 0, ring = 0;
+  for (std::string line; std::getline(csv, line);) {
+    if (line.rfind("disk,", 0) == 0) ++disk;
+    if (line.rfind("ring,", 0) == 0) ++ring;
+  }
+  EXPECT_GT(disk, 10);
+  EXPECT_GT(ring, 5);
+}
+
+TEST(Cli, ContactRejectsBadNu) {
+  const auto r = run({"contact", "--nu", "0.7"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("--nu"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace snapjump::app
