@@ -2,8 +2,6 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include <numbers>
-
 #include "fem/body.hpp"
 #include "mesh/cap_mesher.hpp"
 
@@ -12,11 +10,13 @@ namespace {
 using namespace snapjump;
 
 const fem::Body& default_cap() {
-  // The default resolution's mesh of the (30, 2.0) mm cap: 2 mm in-surface element size, 2
-  // quadratic elements through the thickness.
-  static const fem::Body body(
-      mesh::make_cap_mesh({0.030, 0.002, 80.0 * std::numbers::pi / 180.0, 0.002, 2}),
-      fem::Material::from_young(1.2e6, 0.45, 1160.0));
+  // The default case's mesh at the default resolution: the (30, 2.0) mm cap, sqrt(hR)/3.5 =
+  // 2.2 mm in-surface element size, 2 quadratic elements through the thickness.
+  static const fem::Body body = [] {
+    const auto c = config::default_case();
+    return fem::Body(mesh::make_cap_mesh(mesh::cap_spec(c)),
+                     fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+  }();
   return body;
 }
 

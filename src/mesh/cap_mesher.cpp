@@ -87,6 +87,28 @@ double polar_angle(Vec d) { return std::acos(std::clamp(-d.z, -1.0, 1.0)); }
 
 }  // namespace
 
+CapSpec cap_spec(const config::Case& c) {
+  double fraction = 1.0 / 3.5;
+  switch (c.numerics.resolution) {
+    case config::Resolution::Coarse:
+      fraction = 1.0 / 2.0;
+      break;
+    case config::Resolution::Default:
+      fraction = 1.0 / 3.5;
+      break;
+    case config::Resolution::Fine:
+      fraction = 1.0 / 5.0;
+      break;
+  }
+  CapSpec s;
+  s.R = c.shell.R;
+  s.h = c.shell.h;
+  s.phi = c.shell.phi;
+  s.element_size = c.numerics.element_size.value_or(fraction * std::sqrt(c.shell.h * c.shell.R));
+  s.layers = c.numerics.elements_through_thickness;
+  return s;
+}
+
 Mesh make_cap_mesh(const CapSpec& s) {
   if (!(s.R > 0 && s.h > 0 && s.h < s.R && s.phi > 0 && s.phi < std::numbers::pi &&
         s.element_size > 0 && s.layers >= 1)) {

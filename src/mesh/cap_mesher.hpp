@@ -1,6 +1,7 @@
 // The spherical cap of a case as a quadratic tetrahedral mesh.
 #pragma once
 
+#include "config/case.hpp"
 #include "mesh/mesh.hpp"
 
 namespace snapjump::mesh {
@@ -12,6 +13,11 @@ struct CapSpec {
   double element_size = 0.0;  // target in-surface edge length of the quadratic elements [m]
   int layers = 2;             // quadratic elements through the thickness
 };
+
+// The cap of a case at its resolution: numerics.element_size if given, else the preset's
+// fraction of sqrt(h R) (coarse 1/2, default 1/3.5, fine 1/5; sqrt(h R) is the scale of the contact
+// zone), and numerics.elements_through_thickness layers (2 by default).
+CapSpec cap_spec(const config::Case& c);
 
 // Meshes the cap with its centre of curvature at the origin and its apex on the negative z axis
 // (outer apex at z = -(R + h/2)). gmsh triangulates the mid-surface; each triangle is extruded

@@ -91,6 +91,21 @@ TEST(CapMesh, BoundaryIsInnerOuterAndRim) {
   EXPECT_GT(rim, 0u);
 }
 
+TEST(CapMesh, SpecFromACase) {
+  auto c = config::default_case();
+  auto s = cap_spec(c);
+  EXPECT_EQ(s.layers, 2);  // at least two quadratic elements through the thickness by default
+  EXPECT_NEAR(s.element_size, std::sqrt(0.002 * 0.030) / 3.5, 1e-15);
+  EXPECT_DOUBLE_EQ(s.R, 0.030);
+  c.numerics.resolution = config::Resolution::Fine;
+  EXPECT_NEAR(cap_spec(c).element_size, std::sqrt(0.002 * 0.030) / 5.0, 1e-15);
+  c.numerics.element_size = 0.004;
+  c.numerics.elements_through_thickness = 3;
+  s = cap_spec(c);
+  EXPECT_DOUBLE_EQ(s.element_size, 0.004);
+  EXPECT_EQ(s.layers, 3);
+}
+
 TEST(CapMesh, BadSpecIsRefused) {
   expect_mesh_error([] { (void)make_cap_mesh({kR, kR, kPhi, 0.006, 2}); }, "0 < h < R");
   expect_mesh_error([] { (void)make_cap_mesh({kR, kH, kPhi, 0.0, 2}); }, "element_size > 0");

@@ -105,6 +105,8 @@ struct Shell {
   double R_mm, h_mm;
 };
 
+void PrintTo(const Shell& s, std::ostream* os) { *os << "(" << s.R_mm << ", " << s.h_mm << ") mm"; }
+
 class FabricatedShell : public ::testing::TestWithParam<Shell> {};
 
 // Raising the pressure slowly buckles each cap; it snaps through and stays inverted while the
