@@ -176,7 +176,7 @@ Body::Body(mesh::Mesh mesh, const Material& material)
       }
     }
   }
-  if (inner_rim_.empty()) {
+  if (!mesh_.inner_faces.empty() && !mesh_.clamped.empty() && inner_rim_.empty()) {
     throw mesh::MeshError("no inner face reaches the clamped rim: the cavity is not closed by it");
   }
   colours_ = colour_elements(mesh_);
@@ -318,6 +318,9 @@ void Body::add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f
 }
 
 double Body::cavity_volume(const mesh::Points& x) const {
+  if (inner_rim_.empty()) {
+    throw std::logic_error("cavity_volume: the body has no inner faces closed by a clamped rim");
+  }
   // Reference point: the centre of the inner rim circle, which lies in the rim plane, so the
   // flat lid closing the cavity adds nothing to (1/3) integral of (x - x0) . n dA.
   double c[3] = {};

@@ -218,6 +218,7 @@ Mesh make_cap_mesh(const CapSpec& s) {
         fmt::format("the cap mesh has no node at the apex (nearest is {} m off axis)", off_axis));
   }
   check_mesh(m);
+  check_shell_sets(m);
   return m;
 }
 

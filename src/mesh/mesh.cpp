@@ -86,21 +86,24 @@ void check_mesh(const Mesh& m) {
       }
     }
   }
-  const auto check_set = [&](const std::vector<int>& set, const char* name) {
-    if (set.empty()) throw MeshError(fmt::format("mesh has no {} nodes", name));
-    for (int a : set) {
-      if (a < 0 || a >= n) throw MeshError(fmt::format("{} node {} out of range", name, a));
+  for (const auto* set : {&m.clamped, &m.outer}) {
+    for (int a : *set) {
+      if (a < 0 || a >= n) throw MeshError(fmt::format("node set refers to node {} of {}", a, n));
     }
-  };
-  check_set(m.clamped, "clamped");
-  check_set(m.outer, "outer-surface");
-  if (m.inner_faces.empty()) throw MeshError("mesh has no inner (pressurised) faces");
+  }
   for (const auto& f : m.inner_faces) {
     for (int a : f) {
       if (a < 0 || a >= n) throw MeshError(fmt::format("inner face refers to node {} of {}", a, n));
     }
   }
-  if (m.apex < 0 || m.apex >= n) throw MeshError("mesh has no apex node");
+  if (m.apex >= n) throw MeshError(fmt::format("apex node {} of {}", m.apex, n));
+}
+
+void check_shell_sets(const Mesh& m) {
+  if (m.clamped.empty()) throw MeshError("mesh has no clamped nodes");
+  if (m.outer.empty()) throw MeshError("mesh has no outer-surface nodes");
+  if (m.inner_faces.empty()) throw MeshError("mesh has no inner (pressurised) faces");
+  if (m.apex < 0) throw MeshError("mesh has no apex node");
 }
 
 void translate_z(Mesh& m, double dz) {

@@ -44,9 +44,11 @@ class MeshError : public std::runtime_error {
 };
 
 // Checks element validity (positive Jacobian at every node and quadrature point, no degenerate
-// element), index ranges, and that the node sets are present. Throws MeshError naming the
-// element and where it is.
+// element) and index ranges. Throws MeshError naming the element and where it is.
 void check_mesh(const Mesh& m);
+
+// A shell for the popper also needs clamped nodes, an outer surface, inner faces and an apex.
+void check_shell_sets(const Mesh& m);
 
 // Shifts every node by (0, 0, dz).
 void translate_z(Mesh& m, double dz);

@@ -7,7 +7,7 @@
 #include <set>
 #include <unordered_map>
 
-#include "mesh/gmsh_session.hpp"
+#include "mesh/gmsh_model.hpp"
 
 namespace snapjump::mesh {
 namespace {
@@ -49,20 +49,7 @@ std::string group_names() {
 
 }  // namespace
 
-Mesh read_msh(const std::filesystem::path& path) {
-  if (!std::filesystem::is_regular_file(path)) {
-    throw MeshError(fmt::format("{}: no such mesh file", path.string()));
-  }
-  GmshSession session;
-  gmsh::open(path.string());
-  std::string error;
-  gmsh::logger::getLastError(error);
-  if (!error.empty())
-    throw MeshError(fmt::format("{}: gmsh cannot read it: {}", path.string(), error));
-  const auto fail = [&](const std::string& what) {
-    return MeshError(fmt::format("{}: {}", path.string(), what));
-  };
-
+ModelTets tets_of_current_model(const std::function<MeshError(const std::string&)>& fail) {
   // Volume elements: only 10-node tetrahedra.
   std::vector<int> types;
   std::vector<std::vector<std::size_t>> tags, nodes;
@@ -85,9 +72,9 @@ Mesh read_msh(const std::filesystem::path& path) {
   }
   if (tet_nodes.empty()) throw fail("has no 10-node tetrahedra");
 
-  Mesh m;
-  m.description = fmt::format("gmsh mesh {}", path.string());
-  std::unordered_map<std::size_t, int> index;
+  ModelTets out;
+  Mesh& m = out.mesh;
+  auto& index = out.index;
   {
     std::vector<std::size_t> node_tags;
     std::vector<double> coords, params;
@@ -103,6 +90,32 @@ Mesh read_msh(const std::filesystem::path& path) {
                         coords[3 * it->second + 2]);
     }
   }
+  for (std::size_t e = 0; e < tet_nodes.size() / 10; ++e) {
+    std::array<int, 10> tet{};
+    for (int a = 0; a < 10; ++a) tet[a] = index.at(tet_nodes[10 * e + a]);
+    m.tets.push_back(tet);
+  }
+  return out;
+}
+
+Mesh read_msh(const std::filesystem::path& path) {
+  if (!std::filesystem::is_regular_file(path)) {
+    throw MeshError(fmt::format("{}: no such mesh file", path.string()));
+  }
+  GmshSession session;
+  gmsh::open(path.string());
+  std::string error;
+  gmsh::logger::getLastError(error);
+  if (!error.empty())
+    throw MeshError(fmt::format("{}: gmsh cannot read it: {}", path.string(), error));
+  const auto fail = [&](const std::string& what) {
+    return MeshError(fmt::format("{}: {}", path.string(), what));
+  };
+
+  auto model = tets_of_current_model(fail);
+  Mesh m = std::move(model.mesh);
+  m.description = fmt::format("gmsh mesh {}", path.string());
+  const auto& index = model.index;
   const auto local = [&](std::size_t tag, const char* what) {
     const auto it = index.find(tag);
     if (it == index.end()) {
@@ -110,12 +123,6 @@ Mesh read_msh(const std::filesystem::path& path) {
     }
     return it->second;
   };
-  for (std::size_t e = 0; e < tet_nodes.size() / 10; ++e) {
-    std::array<int, 10> tet{};
-    for (int a = 0; a < 10; ++a) tet[a] = local(tet_nodes[10 * e + a], "tetrahedron");
-    m.tets.push_back(tet);
-  }
-
   // Node sets from the physical groups.
   const auto nodes_of = [&](std::pair<int, int> group, const char* what) {
     std::vector<std::size_t> node_tags;
@@ -242,6 +249,7 @@ Mesh read_msh(const std::filesystem::path& path) {
   }
   try {
     check_mesh(m);
+    check_shell_sets(m);
   } catch (const MeshError& e) {
     throw fail(e.what());
   }

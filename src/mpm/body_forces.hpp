@@ -1,0 +1,34 @@
+// The finite-element body as a force provider for the MPM engine: internal forces, the pressure
+// follower load and gravity, at the particles' current positions.
+#pragma once
+
+#include <functional>
+
+#include "fem/body.hpp"
+#include "mpm/stepper.hpp"
+
+namespace snapjump::mpm {
+
+class BodyForces final : public ForceProvider {
+ public:
+  // pressure(t): pressure difference on the inner faces (empty: none); gravity along -z.
+  BodyForces(const fem::Body& body, double gravity, std::function<double(double)> pressure = {})
+      : body_(body), gravity_(gravity), pressure_(std::move(pressure)) {}
+
+  void forces(const mesh::Points& x, double t, mesh::Points& f) override {
+    body_.internal_forces(x, f);
+    if (pressure_) body_.add_pressure_forces(x, pressure_(t), f);
+    if (gravity_ != 0.0) body_.add_gravity(gravity_, f);
+  }
+
+ private:
+  const fem::Body& body_;
+  double gravity_;
+  std::function<double(double)> pressure_;
+};
+
+// Particles for a body: its reference nodes with its lumped masses; clamped nodes carry
+// kTagClamped.
+Particles particles_of(const fem::Body& body);
+
+}  // namespace snapjump::mpm

@@ -1,0 +1,89 @@
+// A background grid that exists only where particles are: blocks of 4 x 4 x 4 nodes found through
+// a hash of their integer coordinates, so the domain is unbounded (the popper flies). Node data
+// are structure-of-arrays over all active blocks.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+
+namespace snapjump::mpm {
+
+inline constexpr int kBlock = 4;  // nodes per block edge
+inline constexpr int kBlockNodes = kBlock * kBlock * kBlock;
+
+class SparseGrid {
+ public:
+  explicit SparseGrid(double dx);
+
+  [[nodiscard]] double dx() const { return dx_; }
+
+  // Activates the blocks covered by the quadratic B-spline stencils of the particles at x, zeroes
+  // the node data and groups the particles by the block of their stencil's first node.
+  void rebuild(const mesh::Points& x);
+
+  // --- nodes ---------------------------------------------------------------------------------
+  [[nodiscard]] std::size_t num_nodes() const { return mass.size(); }
+  // Integer coordinates of node n (its position is dx times these).
+  [[nodiscard]] std::array<std::int64_t, 3> coords(std::size_t n) const;
+  std::vector<double> mass, px, py, pz;  // node mass and momentum
+  std::vector<std::uint8_t> tags;        // OR of the tags of the particles that reached the node
+
+  // --- particles, as grouped by rebuild() ----------------------------------------------------
+  // For particle p: its home block (index into home_blocks()) and the local index (0..3) of its
+  // stencil's first node in that block, per axis.
+  [[nodiscard]] int home_of(std::size_t p) const { return home_[p]; }
+  [[nodiscard]] const std::array<std::uint8_t, 3>& local_of(std::size_t p) const {
+    return local_[p];
+  }
+  // Node index of stencil node (i, j, k) in 0..2 of particle p.
+  [[nodiscard]] std::size_t stencil_node(std::size_t p, int i, int j, int k) const {
+    const auto& l = local_[p];
+    const int li = l[0] + i, lj = l[1] + j, lk = l[2] + k;
+    const int nb = (li >= kBlock ? 1 : 0) | (lj >= kBlock ? 2 : 0) | (lk >= kBlock ? 4 : 0);
+    const std::size_t block = static_cast<std::size_t>(neighbours_[home_[p]][nb]);
+    return block * kBlockNodes +
+           static_cast<std::size_t>(((li & 3) * kBlock + (lj & 3)) * kBlock + (lk & 3));
+  }
+  // Home blocks of one parity colour (0..7); particles of two home blocks of one colour never
+  // write to the same node, so each colour can run in parallel.
+  [[nodiscard]] const std::vector<int>& homes_of_colour(int c) const { return colour_homes_[c]; }
+  // Particles whose home is block h (an index into the home blocks).
+  [[nodiscard]] std::span<const int> particles_of(int h) const {
+    return {order_.data() + start_[h], order_.data() + start_[h + 1]};
+  }
+  [[nodiscard]] std::size_t num_blocks() const { return block_coords_.size(); }
+
+ private:
+  int block_id(std::int64_t bx, std::int64_t by, std::int64_t bz);
+
+  double dx_;
+  std::unordered_map<std::uint64_t, int> block_index_;
+  std::vector<std::array<std::int64_t, 3>> block_coords_;
+  std::vector<std::array<int, 8>> neighbours_;  // per home block: ids of itself and +x,+y,+z...
+  std::vector<int> home_;                       // per particle
+  std::vector<std::array<std::uint8_t, 3>> local_;
+  std::vector<int> order_, start_;  // particles sorted by home block
+  std::array<std::vector<int>, 8> colour_homes_;
+};
+
+// Quadratic B-spline weights of a particle at x (in grid units) with respect to the nodes
+// base, base + 1, base + 2, base = floor(x - 0.5).
+struct Weights {
+  std::int64_t base;
+  std::array<double, 3> w;
+};
+inline Weights bspline_weights(double x_over_dx) {
+  const double b = std::floor(x_over_dx - 0.5);
+  const double fx = x_over_dx - b;  // in [0.5, 1.5)
+  return {static_cast<std::int64_t>(b),
+          {0.5 * (1.5 - fx) * (1.5 - fx), 0.75 - (fx - 1.0) * (fx - 1.0),
+           0.5 * (fx - 0.5) * (fx - 0.5)}};
+}
+
+}  // namespace snapjump::mpm

@@ -1,0 +1,76 @@
+// Grid rules: what happens to the grid momentum between particle-to-grid and grid-to-particle.
+// Each is an object with apply(); the stepper runs them in order and does not know what they do,
+// so a tilted or moving plate, or another obstacle, is a new class, not an edit of the step.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "mpm/grid.hpp"
+
+namespace snapjump::mpm {
+
+// One vertical degree of freedom: the container that the rim is glued to.
+struct RigidBody {
+  double mass = 0.0;           // [kg]
+  double z = 0.0;              // height of its reference point [m]
+  double vz = 0.0;             // [m/s]
+  double applied_force = 0.0;  // forces other than the clamp (weight share, gas) [N]
+  double clamp_force = 0.0;    // force of the shell on the body in the last step [N]
+  // Advances the body over dt with the applied force and the last clamp reaction.
+  void advance(double dt) {
+    vz += dt * (applied_force + clamp_force) / mass;
+    z += dt * vz;
+  }
+};
+
+struct StepContext {
+  double dt = 0.0;
+  double time = 0.0;  // at the start of the step
+};
+
+class GridRule {
+ public:
+  virtual ~GridRule() = default;
+  [[nodiscard]] virtual std::string_view name() const = 0;
+  virtual void apply(SparseGrid& grid, const StepContext& ctx) = 0;
+};
+
+// Particle tags.
+inline constexpr std::uint8_t kTagClamped = 1;
+
+// Dirichlet clamp to a rigid body: every node reached by a particle carrying `tag` gets the
+// body's velocity along z (and none sideways). The momentum this removes is the force between
+// shell and body; it is stored in body.clamp_force (force on the body).
+class ClampRule final : public GridRule {
+ public:
+  ClampRule(RigidBody& body, std::uint8_t tag = kTagClamped) : body_(body), tag_(tag) {}
+  [[nodiscard]] std::string_view name() const override { return "clamp"; }
+  void apply(SparseGrid& grid, const StepContext& ctx) override;
+
+ private:
+  RigidBody& body_;
+  std::uint8_t tag_;
+};
+
+// The rigid plate with top surface z = 0: on the node layers z = 0, -dx, -2dx, momentum moving
+// into the plate (p_z < 0) loses its normal part, and Coulomb friction takes up to mu times that
+// normal impulse from the tangential momentum, never reversing it. The plate's reaction force is
+// the normal impulse per time step.
+class PlateRule final : public GridRule {
+ public:
+  explicit PlateRule(double mu, int layers = 3) : mu_(mu), layers_(layers) {}
+  [[nodiscard]] std::string_view name() const override { return "plate"; }
+  void apply(SparseGrid& grid, const StepContext& ctx) override;
+  // Reaction force on the body from the plate in the last step (up is positive) [N].
+  [[nodiscard]] double force() const { return force_; }
+  [[nodiscard]] double friction_force() const { return friction_; }
+
+ private:
+  double mu_;
+  int layers_;
+  double force_ = 0.0;
+  double friction_ = 0.0;
+};
+
+}  // namespace snapjump::mpm

@@ -1,0 +1,94 @@
+// The hybrid step of the paper's "Contact analysis by MPM": particle forces from a force provider
+// -> particle velocities -> particle to grid (APIC, quadratic B-splines) -> grid rules -> grid to
+// particle -> advection, then the rigid bodies. The engine knows nothing about tetrahedra: the
+// forces come from any ForceProvider.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "mesh/mesh.hpp"
+#include "mpm/grid.hpp"
+#include "mpm/rules.hpp"
+
+namespace snapjump::mpm {
+
+// Material points: structure of arrays.
+struct Particles {
+  mesh::Points x, v;
+  std::vector<double> mass;
+  std::vector<double> C;  // affine velocity, 9 per particle, row-major
+  std::vector<std::uint8_t> tags;
+  [[nodiscard]] std::size_t size() const { return mass.size(); }
+  // Particles at `positions` with `masses`, at rest.
+  static Particles at_rest(const mesh::Points& positions, const std::vector<double>& masses);
+};
+
+// Forces on the particles at positions x and time t (overwrites f).
+class ForceProvider {
+ public:
+  virtual ~ForceProvider() = default;
+  virtual void forces(const mesh::Points& x, double t, mesh::Points& f) = 0;
+};
+
+// The run cannot go on: a non-finite value, a particle faster than the grid allows, an inverted
+// element. The message says when and where.
+class StepError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct StepperOptions {
+  double dt = 0.0;  // time step [s]
+  double dx = 0.0;  // grid spacing [m]
+  // A particle may move at most this fraction of dx in one step (grid CFL); beyond it the step
+  // stops with a StepError.
+  double max_cfl = 0.5;
+};
+
+class Stepper {
+ public:
+  Stepper(Particles particles, ForceProvider& forces, StepperOptions options);
+
+  // Rules run in the order added. The stepper keeps them alive.
+  GridRule& add_rule(std::unique_ptr<GridRule> rule);
+  // Rigid bodies advanced after each step (their clamp forces come from the rules).
+  void add_rigid_body(RigidBody& body) { bodies_.push_back(&body); }
+
+  void step();
+
+  // The stages of step(), in order (public for tests and probes).
+  void update_particle_velocities();  // 1. v' = v + dt f / m
+  void particle_to_grid();            // 2. APIC transfer of mass and momentum
+  void apply_grid_rules();            // 3. clamp, plate, ...
+  void grid_to_particle();            // 4. velocities, affine matrices, positions
+  void advance_rigid_bodies();        // 5.
+
+  [[nodiscard]] const Particles& particles() const { return p_; }
+  [[nodiscard]] Particles& particles() { return p_; }
+  [[nodiscard]] const SparseGrid& grid() const { return grid_; }
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] double dt() const { return options_.dt; }
+  [[nodiscard]] long steps() const { return steps_; }
+  [[nodiscard]] double kinetic_energy() const;
+  // Largest particle speed after the last step, and the grid CFL number it gives.
+  [[nodiscard]] double max_speed() const { return max_speed_; }
+  [[nodiscard]] double cfl() const { return max_speed_ * options_.dt / options_.dx; }
+
+ private:
+  Particles p_;
+  ForceProvider& forces_;
+  StepperOptions options_;
+  SparseGrid grid_;
+  std::vector<std::unique_ptr<GridRule>> rules_;
+  std::vector<RigidBody*> bodies_;
+  mesh::Points f_;
+  double time_ = 0.0;
+  long steps_ = 0;
+  double max_speed_ = 0.0;
+};
+
+}  // namespace snapjump::mpm

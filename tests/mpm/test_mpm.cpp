@@ -1,0 +1,197 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+
+#include "fem/body.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mesh/solid_mesher.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/stepper.hpp"
+
+namespace snapjump::mpm {
+namespace {
+
+class NoForces final : public ForceProvider {
+ public:
+  void forces(const mesh::Points& x, double, mesh::Points& f) override {
+    f.x.assign(x.size(), 0.0);
+    f.y.assign(x.size(), 0.0);
+    f.z.assign(x.size(), 0.0);
+  }
+};
+
+Particles random_particles(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> pos(-0.01, 0.01), mass(0.5e-6, 2e-6), vel(-1.0, 1.0);
+  mesh::Points x;
+  std::vector<double> m;
+  for (int i = 0; i < n; ++i) {
+    x.push_back(pos(rng), pos(rng), pos(rng) + 0.02);
+    m.push_back(mass(rng));
+  }
+  auto p = Particles::at_rest(x, m);
+  for (int i = 0; i < n; ++i) {
+    p.v.x[i] = vel(rng);
+    p.v.y[i] = vel(rng);
+    p.v.z[i] = vel(rng);
+    for (int k = 0; k < 9; ++k) p.C[9 * i + k] = 50.0 * vel(rng);
+  }
+  return p;
+}
+
+TEST(Transfers, WeightsArePartitionOfUnityWithZeroFirstMoment) {
+  for (double x : {0.0, 0.3, 0.5, 0.99, -1.7, 12.25}) {
+    const auto w = bspline_weights(x);
+    double sum = 0.0, moment = 0.0;
+    for (int a = 0; a < 3; ++a) {
+      sum += w.w[a];
+      moment += w.w[a] * (static_cast<double>(w.base + a) - x);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-15);
+    EXPECT_NEAR(moment, 0.0, 1e-14);
+  }
+}
+
+TEST(Transfers, ParticleToGridConservesMassAndMomentum) {
+  NoForces none;
+  Stepper s(random_particles(500, 1), none, {1e-6, 0.002, 0.5});
+  s.particle_to_grid();
+  const auto& g = s.grid();
+  const auto& p = s.particles();
+  double M = 0, Px = 0, Py = 0, Pz = 0, m = 0, px = 0, py = 0, pz = 0;
+  for (std::size_t a = 0; a < g.num_nodes(); ++a) {
+    M += g.mass[a];
+    Px += g.px[a];
+    Py += g.py[a];
+    Pz += g.pz[a];
+  }
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    m += p.mass[i];
+    px += p.mass[i] * p.v.x[i];
+    py += p.mass[i] * p.v.y[i];
+    pz += p.mass[i] * p.v.z[i];
+  }
+  EXPECT_NEAR(M, m, 1e-14 * m);
+  EXPECT_NEAR(Px, px, 1e-12 * m);
+  EXPECT_NEAR(Py, py, 1e-12 * m);
+  EXPECT_NEAR(Pz, pz, 1e-12 * m);
+  // and back: grid to particle conserves the momentum the grid holds
+  s.grid_to_particle();
+  double qx = 0, qy = 0, qz = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    qx += p.mass[i] * p.v.x[i];
+    qy += p.mass[i] * p.v.y[i];
+    qz += p.mass[i] * p.v.z[i];
+  }
+  EXPECT_NEAR(qx, Px, 1e-12 * m);
+  EXPECT_NEAR(qy, Py, 1e-12 * m);
+  EXPECT_NEAR(qz, Pz, 1e-12 * m);
+}
+
+// APIC transfers reproduce any affine velocity field v = A x + b exactly, with C = A.
+TEST(Transfers, AffineVelocityFieldIsReproducedExactly) {
+  NoForces none;
+  auto particles = random_particles(800, 2);
+  const double A[9] = {0.3, -1.2, 0.4, 1.1, 0.2, -0.5, -0.7, 0.6, -0.1};
+  const double b[3] = {0.1, -0.2, 0.05};
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const double x[3] = {particles.x.x[i], particles.x.y[i], particles.x.z[i]};
+    particles.v.x[i] = A[0] * x[0] + A[1] * x[1] + A[2] * x[2] + b[0];
+    particles.v.y[i] = A[3] * x[0] + A[4] * x[1] + A[5] * x[2] + b[1];
+    particles.v.z[i] = A[6] * x[0] + A[7] * x[1] + A[8] * x[2] + b[2];
+    for (int k = 0; k < 9; ++k) particles.C[9 * i + k] = A[k];
+  }
+  const auto before = particles;
+  Stepper s(std::move(particles), none, {1e-9, 0.002, 0.5});
+  s.particle_to_grid();
+  s.grid_to_particle();
+  const auto& p = s.particles();
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_NEAR(p.v.x[i], before.v.x[i], 1e-12);
+    EXPECT_NEAR(p.v.y[i], before.v.y[i], 1e-12);
+    EXPECT_NEAR(p.v.z[i], before.v.z[i], 1e-12);
+    for (int k = 0; k < 9; ++k) EXPECT_NEAR(p.C[9 * i + k], A[k], 1e-9);
+  }
+}
+
+double grid_angular_momentum_z(const SparseGrid& g) {
+  double L = 0.0;
+  for (std::size_t a = 0; a < g.num_nodes(); ++a) {
+    const auto c = g.coords(a);
+    L +=
+        static_cast<double>(c[0]) * g.dx() * g.py[a] - static_cast<double>(c[1]) * g.dx() * g.px[a];
+  }
+  return L;
+}
+
+// A free elastic ball spinning about z: the angular momentum the grid carries stays constant.
+TEST(Transfers, SpinningBodyKeepsItsAngularMomentum) {
+  const fem::Body ball(mesh::make_ball_mesh(0.01, 0.05, 0.004),
+                       fem::Material::from_young(1.2e6, 0.3, 1160.0));
+  auto p = particles_of(ball);
+  const double omega = 20.0;  // rad/s
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.v.x[i] = -omega * p.x.y[i];
+    p.v.y[i] = omega * p.x.x[i];
+    const double C[9] = {0, -omega, 0, omega, 0, 0, 0, 0, 0};
+    for (int k = 0; k < 9; ++k) p.C[9 * i + k] = C[k];
+  }
+  BodyForces forces(ball, 0.0);
+  Stepper s(std::move(p), forces, {0.3 * ball.stable_time_step(1.0), 0.002, 0.5});
+  s.update_particle_velocities();
+  s.particle_to_grid();
+  const double L0 = grid_angular_momentum_z(s.grid());
+  s.apply_grid_rules();
+  s.grid_to_particle();
+  for (int k = 0; k < 300; ++k) s.step();
+  s.update_particle_velocities();
+  s.particle_to_grid();
+  const double L1 = grid_angular_momentum_z(s.grid());
+  EXPECT_GT(std::abs(L0), 0.0);
+  EXPECT_NEAR(L1 / L0, 1.0, 1e-6) << "after " << s.steps() << " steps";
+}
+
+// Free fall of the clamped shell with its container: z(t) = -g t^2 / 2 within 0.1 %.
+TEST(FreeFall, ClampedShellAndContainerFallAtG) {
+  const double g = 9.80665;
+  const fem::Body shell(
+      mesh::make_cap_mesh({0.030, 0.002, 80.0 * std::numbers::pi / 180, 0.006, 1}),
+      fem::Material::from_young(1.2e6, 0.45, 1160.0));
+  BodyForces forces(shell, g);
+  const double dt = shell.stable_time_step(0.3);
+  Stepper s(particles_of(shell), forces, {dt, 0.003, 0.5});
+  RigidBody container;
+  container.mass = 0.05;
+  container.applied_force = -container.mass * g;
+  s.add_rule(std::make_unique<ClampRule>(container));
+  s.add_rigid_body(container);
+  const int apex = shell.mesh().apex;
+  const double z0 = s.particles().x.z[apex];
+  while (s.time() < 0.02) s.step();
+  const double t = s.time();
+  const double exact = -0.5 * g * t * t;
+  EXPECT_NEAR(container.z / exact, 1.0, 1e-3) << "t = " << t;
+  EXPECT_NEAR((s.particles().x.z[apex] - z0) / exact, 1.0, 1e-3);
+  EXPECT_NEAR(container.vz / (-g * t), 1.0, 1e-3);
+}
+
+TEST(Stepper, RunawayParticleStopsTheRunWithWhenAndWhere) {
+  NoForces none;
+  auto p = random_particles(10, 3);
+  p.v.x[4] = 1e4;  // far beyond the grid CFL
+  for (auto& c : p.C) c = 0.0;
+  Stepper s(std::move(p), none, {1e-5, 0.002, 0.5});
+  try {
+    s.step();
+    FAIL() << "expected a StepError";
+  } catch (const StepError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("t = 1e-05 s"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("grid cells per step"), std::string::npos) << msg;
+  }
+}
+
+}  // namespace
+}  // namespace snapjump::mpm
