@@ -14,6 +14,8 @@
 #include "config/case.hpp"
 #include "contact/contact.hpp"
 #include "io/prediction_report.hpp"
+#include "measure/analysis.hpp"
+#include "measure/time_series.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::app {
@@ -164,6 +166,68 @@ int contact_cmd(const ContactOptions& o, std::ostream& out, std::ostream& err) {
   return kExitOk;
 }
 
+struct AnalyzeOptions {
+  std::string series;
+  std::string case_file;
+  std::string R;
+  std::string force_threshold;
+  std::string format = "table";
+};
+
+int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
+  const units::UnitParser parser;
+  const auto series = measure::TimeSeries::read_csv_file(o.series, &parser);
+  std::optional<config::Case> c;
+  if (!o.case_file.empty()) c = config::load_case_file(o.case_file, {}, &parser);
+  measure::AnalysisOptions opts;
+  const auto quantity = [&](const std::string& text, units::Dimension d, const char* flag) {
+    try {
+      return parser.parse(text, d);
+    } catch (const units::UnitError& e) {
+      throw config::CaseError(fmt::format("{}: {}", flag, e.what()));
+    }
+  };
+  if (!o.R.empty()) opts.R = quantity(o.R, units::Dimension::Length, "--R");
+  if (!o.force_threshold.empty()) {
+    opts.force_threshold =
+        quantity(o.force_threshold, units::Dimension::Force, "--force-threshold");
+  }
+  const auto a = measure::analyze(series, opts, c ? &*c : nullptr);
+  if (o.format == "json") {
+    measure::write_json(out, a);
+    return kExitOk;
+  }
+  const auto row = [&](const char* label, const std::optional<double>& v, double scale,
+                       const char* unit) {
+    if (v) {
+      fmt::print(out, "  {:<40} {:>12.5g}  {}\n", label, *v / scale, unit);
+    } else {
+      fmt::print(out, "  {:<40} {:>12}  {}\n", label, "-", unit);
+    }
+  };
+  fmt::print(out, "snapjump analyze: {} ({} samples)\n", o.series, series.size());
+  fmt::print(out, "  {:<40} {:>12}\n", "outcome", measure::outcome_text(a.outcome));
+  row("transition onset t (w/R < 0.03)", a.t_onset, 1e-3, "ms");
+  row("r*  contact radius at the onset", a.r_star, 1e-3, "mm");
+  row("e*  apex displacement at the onset", a.e_star, 1e-3, "mm");
+  row("F*  peak plate force after the onset", a.F_star, 1.0, "N");
+  row("launch t (F back to about 0)", a.t_launch, 1e-3, "ms");
+  row("t*  onset to launch", a.t_star, 1e-3, "ms");
+  row("force threshold used for the launch", a.force_threshold, 1.0, "N");
+  row("H   highest container position", a.H, 1e-3, "mm");
+  row("H_l container position at the onset", a.H_l, 1e-3, "mm");
+  row("H_s = H - H_l", a.H_s, 1e-3, "mm");
+  if (c) {
+    row("alpha_r = r* / sqrt(h R)", a.alpha_r, 1.0, "");
+    row("alpha_e = e* / h", a.alpha_e, 1.0, "");
+    row("alpha_F = F* / (E h^3 / R)", a.alpha_F, 1.0, "");
+    row("alpha_t = t* / sqrt(m R / (E h^2))", a.alpha_t, 1.0, "");
+    row("H_s / (E h^4 / (mg R))", a.H_s_scaled, 1.0, "");
+  }
+  for (const auto& w : a.warnings) fmt::print(out, "  warning: {}\n", w);
+  return kExitOk;
+}
+
 }  // namespace
 
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -199,6 +263,28 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   contact->add_option("--curves", contact_opts.curves,
                       "write the disk and ring branches N(e_hat) to this CSV file");
 
+  auto* analyze = app.add_subcommand(
+      "analyze",
+      "Characteristic quantities of a time series, simulated or measured on a force plate: "
+      "onset (w/R < 0.03), r*, e*, F*, launch, t*, H, H_l, H_s, the outcome (docs/analysis.md).");
+  AnalyzeOptions analyze_opts;
+  analyze
+      ->add_option("series", analyze_opts.series,
+                   "CSV with columns t and F, and any of z, r, w, e, delta_p, contact; units "
+                   "in brackets, e.g. 't [ms]'")
+      ->required()
+      ->check(CLI::ExistingFile);
+  analyze
+      ->add_option("--case", analyze_opts.case_file,
+                   "case file of the popper: gives R and the scales for the prefactors")
+      ->check(CLI::ExistingFile);
+  analyze->add_option("--R", analyze_opts.R, "shell radius for the onset criterion w/R < 0.03");
+  analyze->add_option("--force-threshold", analyze_opts.force_threshold,
+                      "plate force below which the popper has left (default: 2% of F* or 4 "
+                      "times the noise)");
+  analyze->add_option("--format", analyze_opts.format, "output: table or json")
+      ->check(CLI::IsMember({"table", "json"}));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -209,7 +295,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   try {
     if (predict_cmd->parsed()) return predict(predict_opts, format, out);
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
+    if (analyze->parsed()) return analyze_cmd(analyze_opts, out);
   } catch (const config::CaseError& e) {
+    fmt::print(err, "error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const measure::SeriesError& e) {
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {

@@ -166,3 +166,42 @@ TEST(Cli, ContactRejectsBadNu) {
 
 }  // namespace
 }  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+TEST(Cli, AnalyzeAMeasuredSeriesWithUnits) {
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_series.csv";
+  // w crosses 0.03 R = 0.9 mm at t = 20.2 ms (linear between 1.0 mm at 20 ms and 0.5 mm at
+  // 21 ms); the force peaks at 2.5 N and is 0 from 24 ms on; z peaks at 22 mm.
+  std::ofstream(path) << "t [ms],F [N],z [mm],w [mm]\n"
+                         "0,0.48,0,20\n10,0.6,5,10\n20,0.7,10,1.0\n21,2.5,10.5,0.5\n"
+                         "22,2.0,11,0.2\n23,0.5,12,0.1\n24,0.0,13,0.5\n30,0.0,20,6\n"
+                         "40,0.0,22,8\n50,0.0,18,5\n";
+  const auto r = run({"analyze", path.string(), "--R", "30mm", "--format", "json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_EQ(doc["outcome"], "Jump");
+  EXPECT_NEAR(doc["quantities"]["F_star"]["value"].get<double>(), 2.5, 1e-12);
+  EXPECT_NEAR(doc["quantities"]["H"]["value"].get<double>(), 0.022, 1e-12);
+  EXPECT_NEAR(doc["quantities"]["H_l"]["value"].get<double>(), 0.0101, 1e-9);
+}
+
+TEST(Cli, AnalyzeNamesTheBadCell) {
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_bad_series.csv";
+  std::ofstream(path) << "t,F\n0,1\n0.1,abc\n";
+  const auto r = run({"analyze", path.string(), "--R", "30mm"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find(":3"), std::string::npos) << r.err;
+}
+
+TEST(Cli, AnalyzeRejectsAWrongUnitOnAFlag) {
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_series2.csv";
+  std::ofstream(path) << "t,F\n0,1\n0.1,0\n";
+  const auto r = run({"analyze", path.string(), "--R", "30 N"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("--R"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace snapjump::app

@@ -1,0 +1,343 @@
+#include "measure/analysis.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <span>
+#include <vector>
+
+namespace snapjump::measure {
+namespace {
+
+// y linearly interpolated at tq, held constant outside [t.front(), t.back()].
+double interpolate(std::span<const double> t, std::span<const double> y, double tq) {
+  if (tq <= t.front()) return y.front();
+  if (tq >= t.back()) return y.back();
+  const auto it = std::upper_bound(t.begin(), t.end(), tq);
+  const auto i = static_cast<std::size_t>(it - t.begin());  // t[i - 1] <= tq < t[i]
+  const double s = (tq - t[i - 1]) / (t[i] - t[i - 1]);
+  return y[i - 1] + s * (y[i] - y[i - 1]);
+}
+
+// Time where the segment (i - 1, i) crosses `level`, assuming y[i - 1] and y[i] lie on either side.
+double crossing_time(std::span<const double> t, std::span<const double> y, std::size_t i,
+                     double level) {
+  const double dy = y[i] - y[i - 1];
+  if (dy == 0.0) return t[i];
+  const double s = std::clamp((level - y[i - 1]) / dy, 0.0, 1.0);
+  return t[i - 1] + s * (t[i] - t[i - 1]);
+}
+
+// A robust standard deviation: 1.4826 times the median absolute deviation from the median
+// (equal to the standard deviation for Gaussian noise, blind to a few impact spikes).
+double robust_sigma(std::vector<double> v) {
+  const auto median = [](std::vector<double>& x) {
+    const auto mid = x.begin() + static_cast<std::ptrdiff_t>(x.size() / 2);
+    std::nth_element(x.begin(), mid, x.end());
+    double m = *mid;
+    if (x.size() % 2 == 0) m = 0.5 * (m + *std::max_element(x.begin(), mid));
+    return m;
+  };
+  const double m = median(v);
+  for (auto& x : v) x = std::abs(x - m);
+  return 1.4826 * median(v);
+}
+
+void check_options(const AnalysisOptions& o) {
+  const auto bad = [](std::string_view what, double v) {
+    return SeriesError(fmt::format("analysis option {} = {} must be positive", what, v));
+  };
+  if (o.R && !(*o.R > 0.0)) throw bad("R", *o.R);
+  if (!(o.onset_ratio > 0.0)) throw bad("onset_ratio", o.onset_ratio);
+  if (o.force_threshold && !(*o.force_threshold > 0.0)) {
+    throw bad("force_threshold", *o.force_threshold);
+  }
+  if (!(o.min_flight_time >= 0.0)) {
+    throw SeriesError(fmt::format("analysis option min_flight_time = {} must not be negative",
+                                  o.min_flight_time));
+  }
+  if (!(o.relative_threshold >= 0.0) || !(o.noise_multiple >= 0.0)) {
+    throw SeriesError(
+        "analysis options relative_threshold and noise_multiple must not be negative");
+  }
+  if (!(o.noise_window_fraction > 0.0 && o.noise_window_fraction <= 1.0)) {
+    throw SeriesError(fmt::format("analysis option noise_window_fraction = {} must be in (0, 1]",
+                                  o.noise_window_fraction));
+  }
+}
+
+// Finds the onset; returns the index of the first sample at or after it.
+std::optional<std::size_t> find_onset(const TimeSeries& s, const AnalysisOptions& o, Analysis& a) {
+  const auto t = s.time();
+  if (s.has(kApexGap) && a.R) {
+    const auto w = s.column(kApexGap);
+    const double level = o.onset_ratio * *a.R;
+    const auto it = std::find_if(w.begin(), w.end(), [&](double v) { return v < level; });
+    if (it == w.end()) return std::nullopt;
+    const auto i = static_cast<std::size_t>(it - w.begin());
+    a.onset_source = OnsetSource::ApexGap;
+    if (i == 0) {
+      a.t_onset = t[0];
+      a.warnings.push_back(fmt::format(
+          "w / R is below {} already at the first sample: the onset is taken at the start of the "
+          "record, t = {} s",
+          o.onset_ratio, t[0]));
+    } else {
+      a.t_onset = crossing_time(t, w, i, level);
+    }
+    return i;
+  }
+  if (s.has(kApexGap)) {
+    a.warnings.push_back(
+        "there is a w column but no shell radius R (give it in the options or with the case): "
+        "the onset cannot use w / R");
+  }
+  if (s.has_contact()) {
+    if (!s.has(kApexGap)) {
+      a.warnings.push_back("no w column: the onset is the first row whose contact state is disk");
+    }
+    const auto c = s.contact();
+    const auto it = std::find(c.begin(), c.end(), ContactState::Disk);
+    if (it == c.end()) return std::nullopt;
+    const auto i = static_cast<std::size_t>(it - c.begin());
+    a.onset_source = OnsetSource::ContactDisk;
+    a.t_onset = t[i];
+    return i;
+  }
+  return std::nullopt;
+}
+
+// The launch after the force peak at index `peak`: the first crossing below the threshold after
+// which F stays below it for min_flight_time (or to the end of the record).
+void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak, Analysis& a) {
+  const auto t = s.time();
+  const auto F = s.column(kForce);
+  const std::size_t n = t.size();
+  const double F_star = *a.F_star;
+
+  // Noise: robust spread of F over the final part of the record, counted only from the first
+  // sample after the peak where F is below kQuiet F* (so that a record ending soon after the launch
+  // does not count the falling flank as noise), and only if F is about zero there (in flight).
+  constexpr double kQuiet = 0.1;
+  constexpr std::size_t kMinNoiseSamples = 5;
+  const double t_from = t.back() - o.noise_window_fraction * (t.back() - t.front());
+  std::size_t first = peak + 1;
+  while (first < n && F[first] >= kQuiet * F_star) ++first;
+  std::vector<double> tail;
+  for (std::size_t i = first; i < n; ++i) {
+    if (t[i] >= t_from) tail.push_back(F[i]);
+  }
+  if (tail.size() >= kMinNoiseSamples) {
+    std::vector<double> sorted = tail;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    if (std::abs(median) <= kQuiet * F_star) {
+      a.force_noise = robust_sigma(std::move(tail));
+    } else {
+      a.warnings.push_back(fmt::format(
+          "F is not near zero at the end of the record (median {} N): no noise estimate there, the "
+          "launch threshold is {} F* alone",
+          median, o.relative_threshold));
+    }
+  }
+
+  if (o.force_threshold) {
+    a.force_threshold = *o.force_threshold;
+  } else {
+    a.force_threshold =
+        std::max(o.relative_threshold * F_star, o.noise_multiple * a.force_noise.value_or(0.0));
+  }
+  const double level = *a.force_threshold;
+  if (level >= F_star) {
+    a.warnings.push_back(fmt::format(
+        "the launch threshold {} N is not below the force peak F* = {} N: no launch can be found",
+        level, F_star));
+    return;
+  }
+
+  for (std::size_t k = peak + 1; k < n; ++k) {
+    if (F[k] >= level) continue;
+    // F[k - 1] >= level: the first sample of a candidate stretch below the threshold.
+    const double t_cross = crossing_time(t, F, k, level);
+    std::size_t j = k;
+    bool stays = true;
+    for (; j < n && t[j] <= t_cross + o.min_flight_time; ++j) {
+      if (F[j] >= level) {
+        stays = false;
+        break;
+      }
+    }
+    if (stays) {
+      a.t_launch = t_cross;
+      if (j == n && t.back() - t_cross < o.min_flight_time) {
+        a.warnings.push_back(fmt::format(
+            "the record ends {} ms after the launch, before F has stayed below the threshold "
+            "for {} ms",
+            1e3 * (t.back() - t_cross), 1e3 * o.min_flight_time));
+      }
+      return;
+    }
+    k = j;  // F[j] >= level; resume after it
+  }
+}
+
+}  // namespace
+
+std::string_view to_string(OnsetSource s) {
+  switch (s) {
+    case OnsetSource::None:
+      return "none";
+    case OnsetSource::ApexGap:
+      return "w/R";
+    case OnsetSource::ContactDisk:
+      return "contact=disk";
+  }
+  return "none";
+}
+
+std::string outcome_text(const std::optional<theory::Outcome>& o) {
+  return o ? theory::to_string(*o) : std::string("undetermined");
+}
+
+Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const config::Case* c) {
+  check_options(options);
+  if (!series.has(kForce)) {
+    throw SeriesError(fmt::format(
+        "analysis: the time series has no force column 'F' (the plate reaction); it has: {}",
+        fmt::join(series.columns(), ", ")));
+  }
+  Analysis a;
+  a.R = options.R;
+  if (!a.R && c != nullptr && c->shell.R > 0.0) a.R = c->shell.R;
+  if (series.empty()) {
+    a.warnings.push_back("the time series is empty");
+    return a;
+  }
+  const auto t = series.time();
+  const auto F = series.column(kForce);
+  const std::size_t n = t.size();
+
+  const auto onset = find_onset(series, options, a);
+  const bool can_tell = (series.has(kApexGap) && a.R) || series.has_contact();
+  if (!can_tell) {
+    a.warnings.push_back(
+        "no onset can be found: the series has neither a w column (with R) nor a contact column, "
+        "so the outcome is undetermined");
+  }
+
+  if (onset) {
+    const double t_on = *a.t_onset;
+    if (series.has(kContactRadius)) a.r_star = interpolate(t, series.column(kContactRadius), t_on);
+    if (series.has(kIndentation)) a.e_star = interpolate(t, series.column(kIndentation), t_on);
+    if (series.has(kHeight)) a.H_l = interpolate(t, series.column(kHeight), t_on);
+
+    const auto peak = static_cast<std::size_t>(
+        std::max_element(F.begin() + static_cast<std::ptrdiff_t>(*onset), F.end()) - F.begin());
+    a.F_star = F[peak];
+    a.t_F_star = t[peak];
+    if (*a.F_star > 0.0) {
+      find_launch(series, options, peak, a);
+    } else {
+      a.warnings.push_back(
+          fmt::format("F is never positive after the onset (peak {} N): no launch", *a.F_star));
+    }
+    if (a.t_launch) a.t_star = *a.t_launch - t_on;
+  }
+
+  if (series.has(kHeight)) {
+    const auto z = series.column(kHeight);
+    const auto top = std::max_element(z.begin(), z.end());
+    a.H = *top;
+    if (a.H_l) a.H_s = *a.H - *a.H_l;
+    if (a.t_launch && static_cast<std::size_t>(top - z.begin()) == n - 1) {
+      a.warnings.push_back(
+          "z is highest at the last sample: the record may end before the top of the flight, so H "
+          "and H_s are lower bounds");
+    }
+  }
+
+  if (a.t_launch) {
+    a.outcome = theory::Outcome::Jump;
+  } else if (a.t_onset) {
+    a.outcome = theory::Outcome::Snap;
+  } else if (can_tell) {
+    a.outcome = theory::Outcome::NoSnap;
+  }
+
+  if (c != nullptr) {
+    const double R = c->shell.R;
+    const double h = c->shell.h;
+    const double E = c->material.E;
+    const double mg = c->popper.net_weight;
+    const double m = c->popper.moving_mass;
+    if (R > 0.0 && h > 0.0 && E > 0.0) {
+      if (a.r_star) a.alpha_r = *a.r_star / theory::r_c(h, R);
+      if (a.e_star) a.alpha_e = *a.e_star / theory::e_c(h);
+      if (a.F_star) a.alpha_F = *a.F_star / theory::F_c(E, h, R);
+      if (a.t_star && m > 0.0) a.alpha_t = *a.t_star / theory::t_c(m, E, h, R);
+      if (a.H_s && mg > 0.0) a.H_s_scaled = *a.H_s / (E * h * h * h * h / (mg * R));
+    }
+    if (a.F_star && mg > 0.0) {
+      a.F_star_over_mg = *a.F_star / mg;
+      if (a.outcome == theory::Outcome::Jump && *a.F_star < mg) {
+        a.warnings.push_back(fmt::format(
+            "suspicious Jump: F* = {} N is below the net weight mg = {} N, which the popper "
+            "cannot leave the plate with; check the force offset and the threshold",
+            *a.F_star, mg));
+      }
+    }
+  }
+  return a;
+}
+
+nlohmann::json to_json(const Analysis& a) {
+  using nlohmann::json;
+  const auto num = [](const std::optional<double>& v) {
+    return v && std::isfinite(*v) ? json(*v) : json(nullptr);
+  };
+  struct Row {
+    const char* key;
+    const std::optional<double>& value;
+    const char* unit;
+    const char* label;
+  };
+  const Row rows[] = {
+      {"R", a.R, "m", "shell radius used for w / R"},
+      {"t_onset", a.t_onset, "s", "transition onset"},
+      {"r_star", a.r_star, "m", "r*, contact radius at the onset"},
+      {"e_star", a.e_star, "m", "e*, apex displacement at the onset"},
+      {"F_star", a.F_star, "N", "F*, force peak after the onset"},
+      {"t_F_star", a.t_F_star, "s", "time of the force peak"},
+      {"force_noise", a.force_noise, "N", "noise of F at the end of the record"},
+      {"force_threshold", a.force_threshold, "N", "launch threshold on F"},
+      {"t_launch", a.t_launch, "s", "launch"},
+      {"t_star", a.t_star, "s", "t*, onset to launch"},
+      {"H", a.H, "m", "H, maximum height of the container"},
+      {"H_l", a.H_l, "m", "H_l, container height at the onset"},
+      {"H_s", a.H_s, "m", "H_s = H - H_l"},
+      {"alpha_r", a.alpha_r, "1", "r* / sqrt(h R)"},
+      {"alpha_e", a.alpha_e, "1", "e* / h"},
+      {"alpha_F", a.alpha_F, "1", "F* / (E h^3 / R)"},
+      {"alpha_t", a.alpha_t, "1", "t* / sqrt(m R / (E h^2))"},
+      {"H_s_scaled", a.H_s_scaled, "1", "H_s / (E h^4 / (m g R))"},
+      {"F_star_over_mg", a.F_star_over_mg, "1", "F* / (m g)"},
+  };
+  json quantities = json::object();
+  for (const auto& r : rows) {
+    quantities[r.key] = {{"value", num(r.value)}, {"unit", r.unit}, {"label", r.label}};
+  }
+  return json{
+      {"units", "SI"},
+      {"outcome", a.outcome ? json(theory::to_string(*a.outcome)) : json(nullptr)},
+      {"onset_source",
+       a.onset_source == OnsetSource::None ? json(nullptr) : json(to_string(a.onset_source))},
+      {"quantities", quantities},
+      {"warnings", a.warnings},
+  };
+}
+
+void write_json(std::ostream& out, const Analysis& a) { out << to_json(a).dump(2) << '\n'; }
+
+}  // namespace snapjump::measure

@@ -1,0 +1,81 @@
+// The paper's characteristic quantities of one popper run, from a time series (simulated or
+// measured with the force plate): transition onset, r*, e*, F*, launch, t*, H, H_l, H_s, the
+// outcome (Jump / Snap / No snap), and, given the case, the measured prefactors of the scaling
+// laws. Definitions and thresholds: docs/analysis.md.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "config/case.hpp"
+#include "measure/time_series.hpp"
+#include "theory/scaling.hpp"
+
+namespace snapjump::measure {
+
+struct AnalysisOptions {
+  // Shell radius for the onset criterion w / R < onset_ratio [m]; the case's shell.R when absent.
+  std::optional<double> R;
+  double onset_ratio = 0.03;  // the paper's w / R < 0.03
+  // Launch: F below this [N] for min_flight_time. Default max(0.02 F*, noise_multiple * noise).
+  std::optional<double> force_threshold;
+  double min_flight_time = 5e-3;        // [s]
+  double relative_threshold = 0.02;     // of F*, in the default threshold
+  double noise_multiple = 4.0;          // of the noise level, in the default threshold
+  double noise_window_fraction = 0.10;  // final part of the record where the noise is estimated
+};
+
+// How the onset was found.
+// ApexGap: first time w / R < onset_ratio; ContactDisk: first row whose contact state is "disk".
+enum class OnsetSource { None, ApexGap, ContactDisk };
+
+struct Analysis {
+  // Transition onset (ring -> disk contact).
+  std::optional<double> t_onset;  // [s]
+  OnsetSource onset_source = OnsetSource::None;
+  std::optional<double> R;       // the radius used for w / R [m]
+  std::optional<double> r_star;  // contact radius at the onset [m]
+  std::optional<double> e_star;  // apex displacement (indentation) at the onset [m]
+  // Force peak after the onset.
+  std::optional<double> F_star;    // [N]
+  std::optional<double> t_F_star;  // time of the peak [s]
+  // Launch: F falls below the threshold and stays below it.
+  std::optional<double> force_threshold;  // the one used [N]
+  std::optional<double> force_noise;      // the noise estimate behind the default threshold [N]
+  std::optional<double> t_launch;         // [s]
+  std::optional<double> t_star;           // t_launch - t_onset [s]
+  // Heights of the container.
+  std::optional<double> H;    // max z [m]
+  std::optional<double> H_l;  // z at the onset [m]
+  std::optional<double> H_s;  // H - H_l [m]
+  // Jump if launched, Snap if onset without launch, No snap if no onset; absent when the series
+  // cannot tell (no w column or R, and no contact column).
+  std::optional<theory::Outcome> outcome;
+  // With a case: measured prefactors and scaled quantities.
+  std::optional<double> alpha_r;         // r* / sqrt(h R)
+  std::optional<double> alpha_e;         // e* / h
+  std::optional<double> alpha_F;         // F* / (E h^3 / R)
+  std::optional<double> alpha_t;         // t* / sqrt(m R / (E h^2)), m = moving mass
+  std::optional<double> H_s_scaled;      // H_s / (E h^4 / (m g R)), m g = net weight
+  std::optional<double> F_star_over_mg;  // F* / (m g)
+  std::vector<std::string> warnings;     // anything a reader should know, in plain words
+};
+
+std::string_view to_string(OnsetSource s);  // "none", "w/R", "contact=disk"
+// "Jump", "Snap", "No snap" (the theory's spelling).
+std::string outcome_text(const std::optional<theory::Outcome>& o);
+
+// Analyses a series with columns t and F (required), and w, r, e, z, contact when present.
+// Throws SeriesError when t or F is missing or the options make no sense (R <= 0, ...).
+Analysis analyze(const TimeSeries& series, const AnalysisOptions& options = {},
+                 const config::Case* c = nullptr);
+
+// The result in SI: {"units": "SI", "quantities": {"t_onset": {"value": .., "unit": "s"}, ..},
+// "outcome": "Jump", "onset_source": .., "warnings": [..]}; absent values are null.
+nlohmann::json to_json(const Analysis& a);
+void write_json(std::ostream& out, const Analysis& a);
+
+}  // namespace snapjump::measure

@@ -1,0 +1,483 @@
+#include "measure/time_series.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <istream>
+#include <iterator>
+#include <ostream>
+#include <system_error>
+#include <utility>
+
+namespace snapjump::measure {
+namespace {
+
+struct KnownColumn {
+  std::string_view name;
+  units::Dimension dimension;
+};
+
+constexpr std::array kKnownColumns{
+    KnownColumn{kTime, units::Dimension::Time},
+    KnownColumn{kForce, units::Dimension::Force},
+    KnownColumn{kHeight, units::Dimension::Length},
+    KnownColumn{kContactRadius, units::Dimension::Length},
+    KnownColumn{kApexGap, units::Dimension::Length},
+    KnownColumn{kIndentation, units::Dimension::Length},
+    KnownColumn{kPressure, units::Dimension::Pressure},
+};
+
+std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+// Checks a column list; returns the index of "t". `where` prefixes messages.
+std::size_t check_columns(const std::vector<std::string>& names, std::string_view where) {
+  std::optional<std::size_t> time_index;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const auto& n = names[i];
+    if (trim(n).empty() || trim(n) != n || n.find_first_of(",\n\"") != std::string::npos) {
+      throw SeriesError(fmt::format(
+          "{}: column {} name '{}' is empty or has blanks around it, a comma, a quote or a newline",
+          where, i + 1, n));
+    }
+    if (const auto open = n.find('['); open != std::string::npos) {
+      // "T [degC]" is a kept unknown column; "z [mm]" would read back as z in mm.
+      const auto base = trim(std::string_view(n).substr(0, open));
+      if (column_dimension(base) || base == kContact) {
+        throw SeriesError(fmt::format(
+            "{}: column {} name '{}': the columns hold SI values, so '{}' takes no unit", where,
+            i + 1, n, base));
+      }
+    }
+    if (n == kContact) {
+      throw SeriesError(fmt::format(
+          "{}: 'contact' is not a numeric column; ask for the contact column separately", where));
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (names[j] == n) {
+        throw SeriesError(fmt::format("{}: column '{}' appears twice (columns {} and {})", where, n,
+                                      j + 1, i + 1));
+      }
+    }
+    if (n == kTime) time_index = i;
+  }
+  if (!time_index) {
+    throw SeriesError(fmt::format("{}: there is no time column 't'", where));
+  }
+  return *time_index;
+}
+
+// The row checks shared by TimeSeries::add_row and CsvWriter::write_row.
+void check_row(std::span<const double> values, std::size_t ncolumns, std::size_t time_index,
+               bool with_contact, std::optional<ContactState> contact,
+               std::optional<double> last_time, std::string_view where) {
+  if (values.size() != ncolumns) {
+    throw SeriesError(fmt::format("{}: a row has {} values, but there are {} numeric columns",
+                                  where, values.size(), ncolumns));
+  }
+  if (with_contact && !contact) {
+    throw SeriesError(
+        fmt::format("{}: a row needs a contact state (the series has a contact column)", where));
+  }
+  if (!with_contact && contact) {
+    throw SeriesError(
+        fmt::format("{}: a row has a contact state, but the series has no contact column", where));
+  }
+  const double t = values[time_index];
+  if (!std::isfinite(t)) {
+    throw SeriesError(fmt::format("{}: time {} is not a finite number", where, t));
+  }
+  if (last_time && !(t > *last_time)) {
+    throw SeriesError(
+        fmt::format("{}: time {} s is not after the previous row's {} s", where, t, *last_time));
+  }
+}
+
+std::string header_line(const std::vector<std::string>& names, bool with_contact) {
+  std::string s;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (i > 0) s += ',';
+    s += names[i];
+  }
+  if (with_contact) {
+    s += ',';
+    s += kContact;
+  }
+  s += '\n';
+  return s;
+}
+
+// fmt's "{}" for a double is the shortest text that reads back to the same double.
+void append_row(fmt::memory_buffer& buf, std::span<const double> values,
+                std::optional<ContactState> contact) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i > 0) buf.push_back(',');
+    fmt::format_to(std::back_inserter(buf), "{}", values[i]);
+  }
+  if (contact) {
+    buf.push_back(',');
+    const auto text = to_string(*contact);
+    buf.append(text.data(), text.data() + text.size());
+  }
+  buf.push_back('\n');
+}
+
+std::optional<double> parse_number(std::string_view cell) {
+  auto s = trim(cell);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.empty()) return std::nullopt;
+  double value = 0.0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
+  if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+void split(std::string_view line, std::vector<std::string_view>& cells) {
+  cells.clear();
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = line.find(',', start);
+    if (comma == std::string_view::npos) {
+      cells.push_back(line.substr(start));
+      return;
+    }
+    cells.push_back(line.substr(start, comma - start));
+    start = comma + 1;
+  }
+}
+
+bool is_comment_or_blank(std::string_view line) {
+  const auto s = trim(line);
+  return s.empty() || s.front() == '#';
+}
+
+// One header cell: the column's name, its unit text (if bracketed) and the factor to SI.
+struct HeaderColumn {
+  std::string text;  // as written, trimmed
+  std::string name;  // what the series calls it
+  double to_si = 1.0;
+  bool is_contact = false;
+};
+
+HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::size_t k,
+                               const units::UnitParser& parser) {
+  HeaderColumn c;
+  c.text = std::string(trim(cell));
+  const auto fail = [&](std::string_view why) {
+    return SeriesError(fmt::format("{}: column {} '{}': {}", at, k, c.text, why));
+  };
+  std::string_view name = c.text;
+  std::optional<std::string_view> unit;
+  const auto open = c.text.find('[');
+  const auto close = c.text.find(']');
+  if (open != std::string::npos || close != std::string::npos) {
+    if (open == std::string::npos || close == std::string::npos || close < open) {
+      throw fail("unbalanced brackets; write the unit as \"name [unit]\", e.g. \"t [ms]\"");
+    }
+    if (!trim(std::string_view(c.text).substr(close + 1)).empty()) {
+      throw fail("text after the ']'; write the unit as \"name [unit]\", e.g. \"t [ms]\"");
+    }
+    name = trim(std::string_view(c.text).substr(0, open));
+    unit = trim(std::string_view(c.text).substr(open + 1, close - open - 1));
+  }
+  if (name.empty()) throw fail("the column has no name");
+  if (name == kContact) {
+    if (unit && !unit->empty()) throw fail("the contact column holds text and takes no unit");
+    c.name = std::string(name);
+    c.is_contact = true;
+    return c;
+  }
+  const auto dim = column_dimension(name);
+  if (!dim) {
+    // Not a known quantity: kept as written (unit and all), values unconverted.
+    c.name = c.text;
+    return c;
+  }
+  c.name = std::string(name);
+  if (unit) {
+    try {
+      c.to_si = parser.to_si(1.0, *unit, *dim);
+    } catch (const units::UnitError& e) {
+      throw fail(fmt::format("{} (column '{}' is a {} in {})", e.what(), name,
+                             units::dimension_name(*dim), units::si_unit(*dim)));
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+std::string_view to_string(ContactState s) {
+  switch (s) {
+    case ContactState::None:
+      return "none";
+    case ContactState::Ring:
+      return "ring";
+    case ContactState::Disk:
+      return "disk";
+  }
+  return "none";
+}
+
+std::optional<ContactState> parse_contact_state(std::string_view text) {
+  const auto s = trim(text);
+  std::string lower(s);
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  for (const auto state : {ContactState::None, ContactState::Ring, ContactState::Disk}) {
+    if (lower == to_string(state)) return state;
+  }
+  return std::nullopt;
+}
+
+std::optional<units::Dimension> column_dimension(std::string_view name) {
+  for (const auto& k : kKnownColumns) {
+    if (k.name == name) return k.dimension;
+  }
+  return std::nullopt;
+}
+
+// --- TimeSeries ------------------------------------------------------------------------------
+
+TimeSeries::TimeSeries(std::vector<std::string> columns, bool with_contact)
+    : names_(std::move(columns)), with_contact_(with_contact) {
+  time_index_ = check_columns(names_, "time series");
+  data_.resize(names_.size());
+}
+
+std::optional<std::size_t> TimeSeries::index(std::string_view name) const {
+  for (std::size_t i = 0; i < names_.size(); ++i) {
+    if (names_[i] == name) return i;
+  }
+  return std::nullopt;
+}
+
+std::span<const double> TimeSeries::column(std::string_view name) const {
+  const auto i = index(name);
+  if (!i) {
+    throw SeriesError(fmt::format("the time series has no column '{}' (it has: {})", name,
+                                  fmt::join(names_, ", ")));
+  }
+  return data_[*i];
+}
+
+void TimeSeries::reserve(std::size_t rows) {
+  for (auto& d : data_) d.reserve(rows);
+  if (with_contact_) contact_.reserve(rows);
+}
+
+void TimeSeries::add_row(std::span<const double> values) { append(values, std::nullopt); }
+
+void TimeSeries::add_row(std::span<const double> values, ContactState contact) {
+  append(values, contact);
+}
+
+void TimeSeries::append(std::span<const double> values, std::optional<ContactState> contact) {
+  const auto& t = data_[time_index_];
+  check_row(values, names_.size(), time_index_, with_contact_, contact,
+            t.empty() ? std::nullopt : std::optional<double>(t.back()), "time series");
+  for (std::size_t i = 0; i < values.size(); ++i) data_[i].push_back(values[i]);
+  if (contact) contact_.push_back(*contact);
+}
+
+void TimeSeries::write_csv(std::ostream& out) const {
+  out << header_line(names_, with_contact_);
+  fmt::memory_buffer buf;
+  std::vector<double> row(names_.size());
+  for (std::size_t r = 0; r < size(); ++r) {
+    for (std::size_t i = 0; i < names_.size(); ++i) row[i] = data_[i][r];
+    append_row(buf, row, with_contact_ ? std::optional(contact_[r]) : std::nullopt);
+    if (buf.size() > 1 << 16) {
+      out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+      buf.clear();
+    }
+  }
+  out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+}
+
+TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
+                                const units::UnitParser& parser) {
+  std::string line;
+  std::size_t line_no = 0;
+  const auto at = [&] { return fmt::format("{}:{}", source, line_no); };
+
+  // The header: the first line that is not a comment or blank.
+  bool have_header = false;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);  // UTF-8 BOM
+    if (!is_comment_or_blank(line)) {
+      have_header = true;
+      break;
+    }
+  }
+  if (!have_header) {
+    throw SeriesError(fmt::format(
+        "{}: no header line; the first line that is not a '#' comment names the columns, e.g. "
+        "\"t [ms],F [N],z [mm]\"",
+        source));
+  }
+
+  std::vector<std::string_view> cells;
+  split(line, cells);
+  std::vector<HeaderColumn> header;
+  header.reserve(cells.size());
+  std::optional<std::size_t> contact_col;
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    auto c = parse_header_cell(cells[k], at(), k + 1, parser);
+    for (std::size_t j = 0; j < header.size(); ++j) {
+      if (header[j].name == c.name) {
+        throw SeriesError(fmt::format("{}: column {} '{}': the name '{}' is also column {}", at(),
+                                      k + 1, c.text, c.name, j + 1));
+      }
+    }
+    if (c.is_contact) contact_col = k;
+    header.push_back(std::move(c));
+  }
+  const auto require = [&](std::string_view name, std::string_view what) {
+    for (const auto& h : header) {
+      if (h.name == name) return;
+    }
+    std::vector<std::string_view> have;
+    for (const auto& h : header) have.push_back(h.text);
+    throw SeriesError(fmt::format("{}: the header has no '{}' column ({}, required); it has: {}",
+                                  at(), name, what, fmt::join(have, ", ")));
+  };
+  require(kTime, "time");
+  require(kForce, "the plate reaction force");
+
+  std::vector<std::string> names;
+  std::vector<std::size_t> numeric_cols;  // header position of each numeric column
+  std::size_t time_col = 0;
+  for (std::size_t k = 0; k < header.size(); ++k) {
+    if (header[k].is_contact) continue;
+    if (header[k].name == kTime) time_col = k;
+    names.push_back(header[k].name);
+    numeric_cols.push_back(k);
+  }
+  TimeSeries series(std::move(names), contact_col.has_value());
+
+  std::vector<double> values(numeric_cols.size());
+  std::optional<double> last_time;
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (is_comment_or_blank(line)) continue;
+    split(line, cells);
+    if (cells.size() < header.size()) {
+      throw SeriesError(fmt::format(
+          "{}: {} cells, but the header has {} columns (column {} '{}' is missing)", at(),
+          cells.size(), header.size(), cells.size() + 1, header[cells.size()].text));
+    }
+    if (cells.size() > header.size()) {
+      throw SeriesError(fmt::format("{}: {} cells, but the header has only {} columns", at(),
+                                    cells.size(), header.size()));
+    }
+    for (std::size_t i = 0; i < numeric_cols.size(); ++i) {
+      const auto k = numeric_cols[i];
+      const auto v = parse_number(cells[k]);
+      if (!v) {
+        throw SeriesError(fmt::format("{}: column {} '{}': '{}' is not a finite number", at(),
+                                      k + 1, header[k].text, trim(cells[k])));
+      }
+      values[i] = *v * header[k].to_si;
+    }
+    std::optional<ContactState> state;
+    if (contact_col) {
+      state = parse_contact_state(cells[*contact_col]);
+      if (!state) {
+        throw SeriesError(
+            fmt::format("{}: column {} 'contact': '{}' is not a contact state (none, ring or disk)",
+                        at(), *contact_col + 1, trim(cells[*contact_col])));
+      }
+    }
+    const double t = values[series.time_index_];
+    if (last_time && !(t > *last_time)) {
+      throw SeriesError(fmt::format(
+          "{}: column {} '{}': time {} s is not after the previous row's {} s (time must increase "
+          "from row to row)",
+          at(), time_col + 1, header[time_col].text, t, *last_time));
+    }
+    last_time = t;
+    series.append(values, state);
+  }
+  if (in.bad()) throw SeriesError(fmt::format("{}: read error after line {}", source, line_no));
+  return series;
+}
+
+TimeSeries TimeSeries::read_csv_file(const std::filesystem::path& path,
+                                     const units::UnitParser* parser) {
+  std::ifstream in(path);
+  if (!in) throw SeriesError(fmt::format("{}: cannot open the file", path.string()));
+  if (parser != nullptr) return read_csv(in, path.string(), *parser);
+  const units::UnitParser own;
+  return read_csv(in, path.string(), own);
+}
+
+// --- CsvWriter -------------------------------------------------------------------------------
+
+CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
+                     bool with_contact)
+    : file_(std::make_unique<std::ofstream>(path, std::ios::out | std::ios::trunc)),
+      out_(file_.get()),
+      where_(path.string()),
+      names_(std::move(columns)),
+      with_contact_(with_contact) {
+  time_index_ = check_columns(names_, where_);
+  if (!*file_) throw SeriesError(fmt::format("{}: cannot create the file", where_));
+  put(header_line(names_, with_contact_));
+}
+
+CsvWriter::CsvWriter(std::ostream& out, std::vector<std::string> columns, bool with_contact)
+    : out_(&out), where_("CSV stream"), names_(std::move(columns)), with_contact_(with_contact) {
+  time_index_ = check_columns(names_, where_);
+  put(header_line(names_, with_contact_));
+}
+
+CsvWriter::~CsvWriter() = default;
+CsvWriter::CsvWriter(CsvWriter&&) noexcept = default;
+CsvWriter& CsvWriter::operator=(CsvWriter&&) noexcept = default;
+
+void CsvWriter::write_row(std::span<const double> values) { write(values, std::nullopt); }
+
+void CsvWriter::write_row(std::span<const double> values, ContactState contact) {
+  write(values, contact);
+}
+
+void CsvWriter::write(std::span<const double> values, std::optional<ContactState> contact) {
+  check_row(values, names_.size(), time_index_, with_contact_, contact, last_time_, where_);
+  fmt::memory_buffer buf;
+  append_row(buf, values, contact);
+  put(std::string_view(buf.data(), buf.size()));
+  last_time_ = values[time_index_];
+  ++rows_;
+}
+
+void CsvWriter::write_comment(std::string_view text) {
+  std::string s;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    auto end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    s += "# ";
+    s += text.substr(start, end - start);
+    s += '\n';
+    start = end + 1;
+  }
+  put(s);
+}
+
+void CsvWriter::put(std::string_view text) {
+  out_->write(text.data(), static_cast<std::streamsize>(text.size()));
+  out_->flush();
+  if (!*out_) throw SeriesError(fmt::format("{}: write failed after {} rows", where_, rows_));
+}
+
+}  // namespace snapjump::measure

@@ -1,0 +1,387 @@
+// The analysis on synthetic runs built from closed forms, whose characteristic quantities are
+// worked out by hand below (not taken from this code).
+//
+// The reference run, sampled every 0.1 ms from 0 to 150 ms, R = 30 mm:
+//   w(t) = 5 mm - c t with c = (5 - 0.9) mm / 20.05 ms: w / R = 0.03 (w = 0.9 mm) at t = 20.05 ms,
+//          between the samples at 20.0 and 20.1 ms.
+//   r(t) = 10 mm - 0.2 m/s t   -> r* = 10 - 0.2 * 20.05 = 5.99 mm
+//   e(t) = 0.2 m/s t           -> e* = 4.01 mm
+//   F(t) = 0.5 N before 21 ms, rising linearly to F* = 2 N at t0 = 22 ms, then the triangle
+//          F* (1 - (t - t0) / tau), tau = 4 ms, down to 0 at 26 ms, and 0 after (free flight).
+//          Default threshold 0.02 F* = 0.04 N (no noise): F = 0.04 N at t0 + tau (1 - 0.02)
+//          = 25.92 ms, the launch; t* = 25.92 - 20.05 = 5.87 ms.
+//   z(t) = v0 t up to t1 = 26 ms, then z(t1) + v0 (t - t1) - g (t - t1)^2 / 2, v0 = g * 80 ms, so
+//          the apex is at t1 + 80 ms = 106 ms (a sample): H = v0 (26 + 40) ms = 66 ms * v0,
+//          H_l = z(20.05 ms) = 20.05 ms * v0, H_s = 45.95 ms * v0.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "config/case.hpp"
+#include "measure/analysis.hpp"
+#include "measure/time_series.hpp"
+
+namespace snapjump::measure {
+namespace {
+
+constexpr double g = config::kStandardGravity;
+constexpr double kR = 0.030;
+constexpr double kDt = 1e-4;
+constexpr double kOnset = 20.05e-3;
+constexpr double kT0 = 22e-3;  // force peak
+constexpr double kTau = 4e-3;
+constexpr double kFStar = 2.0;
+constexpr double kV0 = g * 0.080;
+constexpr double kT1 = 26e-3;  // force reaches 0; flight starts
+
+double w_ref(double t) {
+  const double c = (5e-3 - 0.9e-3) / kOnset;
+  return std::max(5e-3 - c * t, 0.0);
+}
+
+// The jump's force: rest, rise, triangle, flight.
+double F_jump(double t) {
+  if (t < 21e-3) return 0.5;
+  if (t < kT0) return 0.5 + 1.5 * (t - 21e-3) / 1e-3;
+  if (t < kT0 + kTau) return kFStar * (1.0 - (t - kT0) / kTau);
+  return 0.0;
+}
+
+double z_jump(double t) {
+  if (t <= kT1) return kV0 * t;
+  const double s = t - kT1;
+  return kV0 * kT1 + kV0 * s - 0.5 * g * s * s;
+}
+
+struct Spec {
+  std::function<double(double)> F = F_jump;
+  std::function<double(double)> z = z_jump;
+  std::function<double(double)> w = w_ref;
+  bool with_w = true;
+  bool with_r_e = true;
+  bool with_z = true;
+  bool with_contact = false;
+  double t_disk = 21e-3;  // contact column: ring before, disk from here
+  double t_end = 150e-3;
+};
+
+TimeSeries make(const Spec& spec) {
+  std::vector<std::string> names{"t", "F"};
+  if (spec.with_z) names.emplace_back("z");
+  if (spec.with_w) names.emplace_back("w");
+  if (spec.with_r_e) {
+    names.emplace_back("r");
+    names.emplace_back("e");
+  }
+  TimeSeries s(names, spec.with_contact);
+  const auto n = static_cast<int>(std::lround(spec.t_end / kDt));
+  std::vector<double> row;
+  for (int i = 0; i <= n; ++i) {
+    const double t = i * kDt;
+    row = {t, spec.F(t)};
+    if (spec.with_z) row.push_back(spec.z(t));
+    if (spec.with_w) row.push_back(spec.w(t));
+    if (spec.with_r_e) {
+      row.push_back(10e-3 - 0.2 * t);
+      row.push_back(0.2 * t);
+    }
+    if (spec.with_contact) {
+      s.add_row(row, t >= spec.t_disk - 1e-12 ? ContactState::Disk : ContactState::Ring);
+    } else {
+      s.add_row(row);
+    }
+  }
+  return s;
+}
+
+AnalysisOptions with_R() {
+  AnalysisOptions o;
+  o.R = kR;
+  return o;
+}
+
+bool has_warning(const Analysis& a, std::string_view text) {
+  for (const auto& w : a.warnings) {
+    if (w.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(Analysis, Jump) {
+  const auto a = analyze(make({}), with_R());
+  ASSERT_TRUE(a.t_onset && a.F_star && a.t_launch && a.t_star && a.H && a.H_l && a.H_s);
+  EXPECT_EQ(a.onset_source, OnsetSource::ApexGap);
+  EXPECT_NEAR(*a.t_onset, 20.05e-3, 1e-12);
+  EXPECT_NEAR(*a.r_star, 5.99e-3, 1e-12);
+  EXPECT_NEAR(*a.e_star, 4.01e-3, 1e-12);
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-12);
+  EXPECT_NEAR(*a.t_F_star, 22e-3, 1e-12);
+  EXPECT_NEAR(*a.force_threshold, 0.04, 1e-12);
+  EXPECT_NEAR(*a.force_noise, 0.0, 1e-15);
+  EXPECT_NEAR(*a.t_launch, 25.92e-3, 1e-10);
+  EXPECT_NEAR(*a.t_star, 5.87e-3, 1e-10);
+  EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-12);
+  EXPECT_NEAR(*a.H_l, 20.05e-3 * kV0, 1e-12);
+  EXPECT_NEAR(*a.H_s, 45.95e-3 * kV0, 1e-12);
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
+  // Without a case there are no prefactors.
+  EXPECT_FALSE(a.alpha_F);
+}
+
+TEST(Analysis, ExplicitThreshold) {
+  auto o = with_R();
+  o.force_threshold = 0.2;  // 0.1 F*: F = 0.2 N at 22 + 4 * 0.9 = 25.6 ms
+  const auto a = analyze(make({}), o);
+  ASSERT_TRUE(a.t_launch);
+  EXPECT_NEAR(*a.t_launch, 25.6e-3, 1e-10);
+  EXPECT_NEAR(*a.t_star, 25.6e-3 - 20.05e-3, 1e-10);
+}
+
+TEST(Analysis, SnapWhenForceSettlesOnTheWeight) {
+  // After the peak F falls to the weight 0.5 N and stays: the popper snapped but did not leave.
+  Spec spec;
+  spec.F = [](double t) {
+    if (t < kT0) return F_jump(t);
+    if (t < kT1) return 2.0 - 1.5 * (t - kT0) / kTau;
+    return 0.5;
+  };
+  spec.z = [](double t) { return kV0 * std::min(t, kT1); };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Snap);
+  ASSERT_TRUE(a.t_onset && a.F_star && a.H && a.H_l && a.H_s);
+  EXPECT_NEAR(*a.t_onset, 20.05e-3, 1e-12);
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-12);
+  EXPECT_FALSE(a.t_launch);
+  EXPECT_FALSE(a.t_star);
+  EXPECT_NEAR(*a.H, 26e-3 * kV0, 1e-12);
+  EXPECT_NEAR(*a.H_l, 20.05e-3 * kV0, 1e-12);
+  EXPECT_NEAR(*a.H_s, 5.95e-3 * kV0, 1e-12);
+}
+
+TEST(Analysis, ShortDipIsNotALaunch) {
+  // F drops to 0 from 26 to 28 ms (2 ms < 5 ms) and comes back to 0.5 N: Snap.
+  Spec spec;
+  spec.F = [](double t) { return t < 28e-3 ? F_jump(t) : 0.5; };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Snap);
+  EXPECT_FALSE(a.t_launch);
+}
+
+TEST(Analysis, LaunchAfterAShortDip) {
+  // The dip of 25.92..28 ms is rejected; from 40 ms F falls linearly from 0.5 N to 0 at 41 ms and
+  // stays there: F = 0.04 N at 40 + 0.92 = 40.92 ms.
+  Spec spec;
+  spec.F = [](double t) {
+    if (t < 28e-3) return F_jump(t);
+    if (t < 40e-3) return 0.5;
+    if (t < 41e-3) return 0.5 * (1.0 - (t - 40e-3) / 1e-3);
+    return 0.0;
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(a.t_launch);
+  EXPECT_NEAR(*a.t_launch, 40.92e-3, 1e-10);
+  EXPECT_NEAR(*a.t_star, 40.92e-3 - 20.05e-3, 1e-10);
+}
+
+TEST(Analysis, NoSnapWhenApexStaysAway) {
+  Spec spec;
+  spec.w = [](double) { return 1.0e-3; };  // w / R = 0.0333 > 0.03 throughout
+  spec.F = [](double) { return 0.5; };
+  spec.z = [](double t) { return 1e-3 * std::sin(100.0 * t); };  // max 1 mm (t = 15.7 ms)
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::NoSnap);
+  EXPECT_FALSE(a.t_onset);
+  EXPECT_FALSE(a.r_star);
+  EXPECT_FALSE(a.F_star);
+  EXPECT_FALSE(a.H_l);
+  ASSERT_TRUE(a.H);
+  EXPECT_NEAR(*a.H, 1e-3, 1e-9);  // sampled within 0.05 ms of the top: error < 1.3e-11 m
+}
+
+TEST(Analysis, OnsetFromContactWhenNoW) {
+  Spec spec;
+  spec.with_w = false;
+  spec.with_contact = true;  // disk from the sample at 21 ms
+  const auto a = analyze(make(spec));
+  EXPECT_EQ(a.onset_source, OnsetSource::ContactDisk);
+  ASSERT_TRUE(a.t_onset && a.t_star && a.r_star);
+  EXPECT_NEAR(*a.t_onset, 21e-3, 1e-12);
+  EXPECT_NEAR(*a.r_star, 10e-3 - 0.2 * 21e-3, 1e-12);
+  EXPECT_NEAR(*a.t_star, 25.92e-3 - 21e-3, 1e-10);
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  EXPECT_TRUE(has_warning(a, "no w column"));
+}
+
+TEST(Analysis, WithoutRTheWColumnIsNotUsed) {
+  Spec spec;
+  spec.with_contact = true;
+  const auto a = analyze(make(spec));  // no R, no case
+  EXPECT_EQ(a.onset_source, OnsetSource::ContactDisk);
+  EXPECT_TRUE(has_warning(a, "no shell radius R"));
+}
+
+TEST(Analysis, UndeterminedWithoutWOrContact) {
+  Spec spec;
+  spec.with_w = false;
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome);
+  EXPECT_FALSE(a.t_onset);
+  EXPECT_FALSE(a.F_star);
+  EXPECT_TRUE(has_warning(a, "no onset can be found"));
+  EXPECT_EQ(outcome_text(a.outcome), "undetermined");
+  ASSERT_TRUE(a.H);  // heights need no onset
+  EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-12);
+}
+
+TEST(Analysis, OnsetAtFirstSample) {
+  Spec spec;
+  spec.w = [](double) { return 0.5e-3; };
+  const auto a = analyze(make(spec), with_R());
+  ASSERT_TRUE(a.t_onset);
+  EXPECT_EQ(*a.t_onset, 0.0);
+  EXPECT_TRUE(has_warning(a, "already at the first sample"));
+}
+
+TEST(Analysis, RecordEndingSoonAfterLaunch) {
+  Spec spec;
+  spec.t_end = 27e-3;  // 1.08 ms after the launch at 25.92 ms
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(a.t_launch);
+  EXPECT_NEAR(*a.t_launch, 25.92e-3, 1e-10);
+  EXPECT_TRUE(has_warning(a, "the record ends"));
+  EXPECT_TRUE(has_warning(a, "z is highest at the last sample"));
+}
+
+// Gaussian noise of standard deviation 1% F* (Box-Muller on std::mt19937, which the standard
+// specifies bit for bit, so the series is the same everywhere).
+TEST(Analysis, NoiseRobustness) {
+  std::mt19937 gen(20240611u);
+  const auto uniform = [&] { return (static_cast<double>(gen()) + 0.5) / 4294967296.0; };
+  const double sigma = 0.01 * kFStar;
+  std::vector<double> noise;
+  for (int i = 0; i <= 1500; ++i) {
+    noise.push_back(sigma * std::sqrt(-2.0 * std::log(uniform())) *
+                    std::cos(2.0 * std::numbers::pi * uniform()));
+  }
+  Spec spec;
+  spec.F = [&](double t) {
+    return F_jump(t) + noise[static_cast<std::size_t>(std::lround(t / kDt))];
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(a.force_noise && a.force_threshold && a.t_launch && a.F_star);
+  EXPECT_NEAR(*a.force_noise, sigma, 0.25 * sigma);  // from ~150 samples
+  // Threshold 4 sigma = 0.08 N (above 0.02 F*): F* (1 - (t - t0)/tau) = 0.08 at
+  // 22 + 4 (1 - 0.04) = 25.84 ms. F falls 0.05 N per sample, so noise moves it by about a sample.
+  EXPECT_NEAR(*a.force_threshold, 4 * sigma, 4 * 0.25 * sigma);
+  const double expected = kT0 + kTau * (1.0 - *a.force_threshold / kFStar);
+  EXPECT_NEAR(*a.t_launch, expected, 3 * kDt);
+  EXPECT_NEAR(*a.t_launch, 25.84e-3, 4 * kDt);
+  EXPECT_NEAR(*a.F_star, kFStar, 4 * sigma);
+  EXPECT_NEAR(*a.t_onset, 20.05e-3, 1e-12);  // w is clean
+}
+
+config::Case paper_case(double net_weight) {
+  config::Case c;
+  c.shell.R = 0.030;
+  c.shell.h = 0.002;
+  c.shell.phi = 80.0 * std::numbers::pi / 180.0;
+  c.material.E = 1.2e6;
+  c.material.nu = 0.5;
+  c.popper.net_weight = net_weight;
+  c.popper.moving_mass = 0.049;
+  return c;
+}
+
+TEST(Analysis, PrefactorsWithCase) {
+  const auto c = paper_case(0.48);
+  const auto a = analyze(make({}), {}, &c);  // R from the case
+  ASSERT_TRUE(a.R);
+  EXPECT_EQ(*a.R, 0.030);
+  ASSERT_TRUE(a.alpha_r && a.alpha_e && a.alpha_F && a.alpha_t && a.H_s_scaled);
+  // sqrt(h R) = sqrt(6e-5 m^2) = 7.745967 mm
+  EXPECT_NEAR(*a.alpha_r, 5.99e-3 / 7.7459666924148e-3, 1e-9);
+  EXPECT_NEAR(*a.alpha_e, 4.01 / 2.0, 1e-9);
+  // E h^3 / R = 1.2e6 * 8e-9 / 0.03 = 0.32 N
+  EXPECT_NEAR(*a.alpha_F, 2.0 / 0.32, 1e-9);
+  // sqrt(m R / (E h^2)) = sqrt(0.049 * 0.03 / (1.2e6 * 4e-6)) = sqrt(3.0625e-4) = 17.5 ms
+  EXPECT_NEAR(*a.alpha_t, 5.87 / 17.5, 1e-7);
+  // E h^4 / (m g R) = 1.2e6 * 1.6e-11 / (0.48 * 0.03) = 1.3333 mm
+  EXPECT_NEAR(*a.H_s_scaled, 45.95e-3 * kV0 / (1.92e-5 / 0.0144), 1e-9);
+  EXPECT_NEAR(*a.F_star_over_mg, 2.0 / 0.48, 1e-12);
+  EXPECT_TRUE(a.warnings.empty());
+}
+
+TEST(Analysis, SuspiciousJumpBelowWeight) {
+  const auto c = paper_case(3.0);  // mg = 3 N > F* = 2 N
+  const auto a = analyze(make({}), {}, &c);
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  EXPECT_TRUE(has_warning(a, "suspicious Jump"));
+}
+
+TEST(Analysis, BadInput) {
+  TimeSeries no_force({"t", "z"});
+  no_force.add_row({0.0, 0.0});
+  EXPECT_THROW((void)analyze(no_force, with_R()), SeriesError);
+  AnalysisOptions bad;
+  bad.R = -1.0;
+  EXPECT_THROW((void)analyze(make({}), bad), SeriesError);
+  const auto empty = analyze(TimeSeries({"t", "F"}), with_R());
+  EXPECT_FALSE(empty.outcome);
+  EXPECT_TRUE(has_warning(empty, "empty"));
+}
+
+TEST(Analysis, Json) {
+  const auto c = paper_case(0.48);
+  Spec spec;
+  spec.with_r_e = false;
+  const auto j = to_json(analyze(make(spec), {}, &c));
+  EXPECT_EQ(j["units"], "SI");
+  EXPECT_EQ(j["outcome"], "Jump");
+  EXPECT_EQ(j["onset_source"], "w/R");
+  EXPECT_NEAR(j["quantities"]["t_star"]["value"].get<double>(), 5.87e-3, 1e-10);
+  EXPECT_EQ(j["quantities"]["t_star"]["unit"], "s");
+  EXPECT_EQ(j["quantities"]["F_star"]["unit"], "N");
+  EXPECT_TRUE(j["quantities"]["r_star"]["value"].is_null());
+  EXPECT_TRUE(j["quantities"]["alpha_r"]["value"].is_null());
+  EXPECT_NEAR(j["quantities"]["alpha_F"]["value"].get<double>(), 6.25, 1e-9);
+  EXPECT_TRUE(j["warnings"].is_array());
+  std::ostringstream out;
+  write_json(out, analyze(make(spec), {}, &c));
+  EXPECT_EQ(nlohmann::json::parse(out.str()), j);
+}
+
+// A measured CSV goes through the same analysis: the reference run written in ms / mm / mN.
+TEST(Analysis, FromCsvInOtherUnits) {
+  const auto s = make({});
+  std::ostringstream csv;
+  csv << "# force plate export\nt [ms],F [mN],z [mm],w [mm],r [mm],e [mm]\n";
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    csv << 1e3 * s.time()[i] << ',' << 1e3 * s.column("F")[i] << ',' << 1e3 * s.column("z")[i]
+        << ',' << 1e3 * s.column("w")[i] << ',' << 1e3 * s.column("r")[i] << ','
+        << 1e3 * s.column("e")[i] << '\n';
+  }
+  std::istringstream in(csv.str());
+  const units::UnitParser parser;
+  const auto read = TimeSeries::read_csv(in, "plate.csv", parser);
+  const auto a = analyze(read, with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  // Six significant digits in the text: microsecond-level agreement.
+  EXPECT_NEAR(*a.t_onset, 20.05e-3, 1e-7);
+  EXPECT_NEAR(*a.t_star, 5.87e-3, 1e-6);
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-6);
+  EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-7);
+}
+
+}  // namespace
+}  // namespace snapjump::measure
