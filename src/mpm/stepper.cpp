@@ -5,8 +5,22 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 namespace snapjump::mpm {
+
+TimeStep choose_time_step(double elastic_bound, double dx, double expected_speed, double cfl_grid) {
+  TimeStep t;
+  t.elastic = elastic_bound;
+  t.grid = expected_speed > 0.0 ? cfl_grid * dx / expected_speed
+                                : std::numeric_limits<double>::infinity();
+  t.dt = std::min(t.elastic, t.grid);
+  t.limiting = t.grid < t.elastic ? "grid CFL" : "elastic";
+  if (!(t.dt > 0.0) || !std::isfinite(t.dt)) {
+    throw std::invalid_argument("time step: bounds must be positive and finite");
+  }
+  return t;
+}
 
 Particles Particles::at_rest(const mesh::Points& positions, const std::vector<double>& masses) {
   Particles p;

@@ -49,6 +49,16 @@ struct StepperOptions {
   double max_cfl = 0.5;
 };
 
+// The time step: the smaller of the elastic bound (cfl_elastic * smallest node spacing / p-wave
+// speed) and the grid bound (cfl_grid * dx / the fastest speed expected).
+struct TimeStep {
+  double dt = 0.0;
+  double elastic = 0.0;  // elastic bound [s]
+  double grid = 0.0;     // grid CFL bound [s]
+  const char* limiting = "elastic";
+};
+TimeStep choose_time_step(double elastic_bound, double dx, double expected_speed, double cfl_grid);
+
 class Stepper {
  public:
   Stepper(Particles particles, ForceProvider& forces, StepperOptions options);

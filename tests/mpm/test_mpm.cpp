@@ -177,6 +177,33 @@ TEST(FreeFall, ClampedShellAndContainerFallAtG) {
   EXPECT_NEAR(container.vz / (-g * t), 1.0, 1e-3);
 }
 
+// A free body (no clamp, no plate) falls at g: z(t) = -g t^2 / 2 within 0.1 %.
+TEST(FreeFall, BallFallsAtG) {
+  const double g = 9.80665;
+  const fem::Body ball(mesh::make_ball_mesh(0.01, 0.05, 0.005),
+                       fem::Material::from_young(1.2e6, 0.3, 1160.0));
+  BodyForces forces(ball, g);
+  Stepper s(particles_of(ball), forces, {ball.stable_time_step(0.3), 0.002, 0.5});
+  const auto z0 = s.particles().x.z;
+  while (s.time() < 0.03) s.step();
+  double dz = 0.0, m = 0.0;
+  for (std::size_t i = 0; i < z0.size(); ++i) {
+    dz += s.particles().mass[i] * (s.particles().x.z[i] - z0[i]);
+    m += s.particles().mass[i];
+  }
+  const double t = s.time();
+  EXPECT_NEAR(dz / m / (-0.5 * g * t * t), 1.0, 1e-3) << "t = " << t;
+}
+
+TEST(Stepper, TimeStepIsTheSmallerBound) {
+  const auto a = choose_time_step(1e-6, 0.001, 10.0, 0.5);  // grid bound 5e-5 s
+  EXPECT_DOUBLE_EQ(a.dt, 1e-6);
+  EXPECT_STREQ(a.limiting, "elastic");
+  const auto b = choose_time_step(1e-4, 0.001, 10.0, 0.5);
+  EXPECT_DOUBLE_EQ(b.dt, 5e-5);
+  EXPECT_STREQ(b.limiting, "grid CFL");
+}
+
 TEST(Stepper, RunawayParticleStopsTheRunWithWhenAndWhere) {
   NoForces none;
   auto p = random_particles(10, 3);
