@@ -1,5 +1,7 @@
 #include "app/cli.hpp"
 
+#include "app/run.hpp"
+
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
@@ -285,6 +287,21 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   analyze->add_option("--format", analyze_opts.format, "output: table or json")
       ->check(CLI::IsMember({"table", "json"}));
 
+  auto* run_cmd = app.add_subcommand(
+      "run",
+      "Simulate the popper (MPM): buckle, set delta_p_j, ground, release; write the time series, "
+      "a summary and ParaView snapshots into a new folder.");
+  CaseOptions run_case;
+  run_case.add_to(*run_cmd);
+  RunOptions run_opts;
+  std::string run_resolution;
+  run_cmd->add_option("--output", run_opts.output,
+                      "folder for the results (must not exist or be empty; default "
+                      "runs/<case>-<date-time>)");
+  run_cmd->add_option("--resolution", run_resolution, "coarse, default or fine")
+      ->check(CLI::IsMember({"coarse", "default", "fine"}));
+  run_cmd->add_flag("--quiet", run_opts.quiet, "no progress lines");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -296,6 +313,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     if (predict_cmd->parsed()) return predict(predict_opts, format, out);
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
     if (analyze->parsed()) return analyze_cmd(analyze_opts, out);
+    if (run_cmd->parsed()) {
+      auto c = run_case.load();
+      if (run_resolution == "coarse") c.numerics.resolution = config::Resolution::Coarse;
+      if (run_resolution == "default") c.numerics.resolution = config::Resolution::Default;
+      if (run_resolution == "fine") c.numerics.resolution = config::Resolution::Fine;
+      return run_simulation(c, run_opts, out, err);
+    }
   } catch (const config::CaseError& e) {
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;

@@ -275,6 +275,30 @@ void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {
 
 double Body::strain_energy(const mesh::Points& x) const { return element_loop<true>(x, nullptr); }
 
+std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
+  std::vector<double> out(mesh_.tets.size(), 0.0);
+  for (std::size_t e = 0; e < mesh_.tets.size(); ++e) {
+    const auto& tet = mesh_.tets[e];
+    double W = 0.0, V = 0.0;
+    for (int q = 0; q < kQp; ++q) {
+      const double* g = &grad_[(e * kQp + q) * kGradStride];
+      const double w = weight_[e * kQp + q];
+      double F[9] = {};
+      for (int a = 0; a < kTetNodes; ++a) {
+        const double xa[3] = {x.x[tet[a]], x.y[tet[a]], x.z[tet[a]]};
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) F[3 * i + j] += xa[i] * g[3 * a + j];
+        }
+      }
+      const double psi = neo_hookean_energy(material_, F);
+      W += w * (std::isfinite(psi) ? psi : 0.0);
+      V += w;
+    }
+    out[e] = W / V;
+  }
+  return out;
+}
+
 namespace {
 
 // Calls visit(face, N, area_vector * weight, position) at each quadrature point of each face;

@@ -59,6 +59,8 @@ class Body {
   void internal_forces(const mesh::Points& x, mesh::Points& f) const;
   // Strain energy W at positions x. Throws InvertedElement.
   [[nodiscard]] double strain_energy(const mesh::Points& x) const;
+  // Strain energy density of each element (its energy over its reference volume) [J/m^3].
+  [[nodiscard]] std::vector<double> element_energy_density(const mesh::Points& x) const;
 
   // f += the follower load of a pressure difference dp (outside minus inside) on the current
   // inner faces: f_a = -dp * integral of N_a n dA, n out of the cavity. Equals -dp dV/dx_a.

@@ -116,7 +116,7 @@ void write_table(std::ostream& out, const config::Case& c, const theory::Predict
   }
 }
 
-void write_json(std::ostream& out, const config::Case& c, const theory::Prediction& p) {
+nlohmann::json to_json(const config::Case& c, const theory::Prediction& p) {
   using nlohmann::json;
   // Infinite margins (no lift needed) become null: JSON has no infinity.
   const auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
@@ -148,7 +148,11 @@ void write_json(std::ostream& out, const config::Case& c, const theory::Predicti
       {"outcome", outcome},
       {"outcome_text", p.outcome.text()},
   };
-  out << doc.dump(2) << '\n';
+  return doc;
+}
+
+void write_json(std::ostream& out, const config::Case& c, const theory::Prediction& p) {
+  out << to_json(c, p).dump(2) << '\n';
 }
 
 void write_csv(std::ostream& out, const theory::Prediction& p) {

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "config/case.hpp"
 #include "theory/scaling.hpp"
 
@@ -26,6 +28,7 @@ struct ReportRow {
 std::vector<ReportRow> prediction_rows(const theory::Prediction& p);
 
 void write_table(std::ostream& out, const config::Case& c, const theory::Prediction& p);
+nlohmann::json to_json(const config::Case& c, const theory::Prediction& p);
 void write_json(std::ostream& out, const config::Case& c, const theory::Prediction& p);
 void write_csv(std::ostream& out, const theory::Prediction& p);
 

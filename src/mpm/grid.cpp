@@ -49,14 +49,11 @@ std::array<std::int64_t, 3> SparseGrid::coords(std::size_t n) const {
 
 void SparseGrid::rebuild(const mesh::Points& x) {
   const std::size_t np = x.size();
-  block_index_.clear();
-  block_coords_.clear();
-  home_.resize(np);
-  local_.resize(np);
   const double inv_dx = 1.0 / dx_;
-  // Home blocks first, in order of first appearance.
-  std::vector<int> home_block;  // home index -> block id
-  std::unordered_map<int, int> home_of_block;
+  std::vector<std::uint64_t> keys(np);
+  std::vector<std::array<std::int64_t, 3>> blocks(np);
+  local_.resize(np);
+  bool same = home_key_.size() == np && !block_coords_.empty();
   for (std::size_t p = 0; p < np; ++p) {
     const double gx = x.x[p] * inv_dx, gy = x.y[p] * inv_dx, gz = x.z[p] * inv_dx;
     if (!std::isfinite(gx + gy + gz)) {
@@ -65,36 +62,49 @@ void SparseGrid::rebuild(const mesh::Points& x) {
     const std::int64_t b[3] = {static_cast<std::int64_t>(std::floor(gx - 0.5)),
                                static_cast<std::int64_t>(std::floor(gy - 0.5)),
                                static_cast<std::int64_t>(std::floor(gz - 0.5))};
-    std::int64_t blk[3];
     for (int d = 0; d < 3; ++d) {
-      blk[d] = floor_div(b[d], kBlock);
-      local_[p][d] = static_cast<std::uint8_t>(b[d] - blk[d] * kBlock);
+      blocks[p][d] = floor_div(b[d], kBlock);
+      local_[p][d] = static_cast<std::uint8_t>(b[d] - blocks[p][d] * kBlock);
     }
-    const int id = block_id(blk[0], blk[1], blk[2]);
-    const auto [it, inserted] = home_of_block.try_emplace(id, static_cast<int>(home_block.size()));
-    if (inserted) home_block.push_back(id);
-    home_[p] = it->second;
+    keys[p] = key(blocks[p][0], blocks[p][1], blocks[p][2]);
+    same = same && keys[p] == home_key_[p];
   }
-  // The +x, +y, +z neighbours that stencils may reach.
-  const std::size_t nh = home_block.size();
-  neighbours_.resize(nh);
-  for (auto& c : colour_homes_) c.clear();
-  for (std::size_t h = 0; h < nh; ++h) {
-    const auto b = block_coords_[home_block[h]];
-    for (int nb = 0; nb < 8; ++nb) {
-      neighbours_[h][nb] =
-          block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1));
+  if (!same) {
+    block_index_.clear();
+    block_coords_.clear();
+    home_.resize(np);
+    // Home blocks first, in order of first appearance.
+    std::vector<int> home_block;  // home index -> block id
+    std::unordered_map<int, int> home_of_block;
+    for (std::size_t p = 0; p < np; ++p) {
+      const int id = block_id(blocks[p][0], blocks[p][1], blocks[p][2]);
+      const auto [it, inserted] =
+          home_of_block.try_emplace(id, static_cast<int>(home_block.size()));
+      if (inserted) home_block.push_back(id);
+      home_[p] = it->second;
     }
-    const int colour = static_cast<int>((b[0] & 1) | ((b[1] & 1) << 1) | ((b[2] & 1) << 2));
-    colour_homes_[colour].push_back(static_cast<int>(h));
+    // The +x, +y, +z neighbours that stencils may reach.
+    const std::size_t nh = home_block.size();
+    neighbours_.resize(nh);
+    for (auto& c : colour_homes_) c.clear();
+    for (std::size_t h = 0; h < nh; ++h) {
+      const auto b = block_coords_[home_block[h]];
+      for (int nb = 0; nb < 8; ++nb) {
+        neighbours_[h][nb] =
+            block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1));
+      }
+      const int colour = static_cast<int>((b[0] & 1) | ((b[1] & 1) << 1) | ((b[2] & 1) << 2));
+      colour_homes_[colour].push_back(static_cast<int>(h));
+    }
+    // Particles grouped by home block (counting sort).
+    start_.assign(nh + 1, 0);
+    for (std::size_t p = 0; p < np; ++p) ++start_[home_[p] + 1];
+    for (std::size_t h = 0; h < nh; ++h) start_[h + 1] += start_[h];
+    order_.resize(np);
+    std::vector<int> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t p = 0; p < np; ++p) order_[fill[home_[p]]++] = static_cast<int>(p);
+    home_key_ = std::move(keys);
   }
-  // Particles grouped by home block (counting sort).
-  start_.assign(nh + 1, 0);
-  for (std::size_t p = 0; p < np; ++p) ++start_[home_[p] + 1];
-  for (std::size_t h = 0; h < nh; ++h) start_[h + 1] += start_[h];
-  order_.resize(np);
-  std::vector<int> fill(start_.begin(), start_.end() - 1);
-  for (std::size_t p = 0; p < np; ++p) order_[fill[home_[p]]++] = static_cast<int>(p);
 
   const std::size_t nn = block_coords_.size() * kBlockNodes;
   mass.assign(nn, 0.0);
@@ -102,6 +112,7 @@ void SparseGrid::rebuild(const mesh::Points& x) {
   py.assign(nn, 0.0);
   pz.assign(nn, 0.0);
   tags.assign(nn, 0);
+  block_tags.assign(block_coords_.size(), 0);
 }
 
 }  // namespace snapjump::mpm

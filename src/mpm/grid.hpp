@@ -24,7 +24,8 @@ class SparseGrid {
   [[nodiscard]] double dx() const { return dx_; }
 
   // Activates the blocks covered by the quadratic B-spline stencils of the particles at x, zeroes
-  // the node data and groups the particles by the block of their stencil's first node.
+  // the node data and groups the particles by the block of their stencil's first node. When no
+  // particle has changed block since the last call, the blocks and groups are kept.
   void rebuild(const mesh::Points& x);
 
   // --- nodes ---------------------------------------------------------------------------------
@@ -33,6 +34,11 @@ class SparseGrid {
   [[nodiscard]] std::array<std::int64_t, 3> coords(std::size_t n) const;
   std::vector<double> mass, px, py, pz;  // node mass and momentum
   std::vector<std::uint8_t> tags;        // OR of the tags of the particles that reached the node
+  std::vector<std::uint8_t> block_tags;  // OR of the node tags of each block
+  // Integer coordinates of block b (its nodes are kBlock times these plus 0..3).
+  [[nodiscard]] const std::array<std::int64_t, 3>& block_coords(std::size_t b) const {
+    return block_coords_[b];
+  }
 
   // --- particles, as grouped by rebuild() ----------------------------------------------------
   // For particle p: its home block (index into home_blocks()) and the local index (0..3) of its
@@ -63,6 +69,7 @@ class SparseGrid {
   int block_id(std::int64_t bx, std::int64_t by, std::int64_t bz);
 
   double dx_;
+  std::vector<std::uint64_t> home_key_;  // per particle: key of its home block, last rebuild
   std::unordered_map<std::uint64_t, int> block_index_;
   std::vector<std::array<std::int64_t, 3>> block_coords_;
   std::vector<std::array<int, 8>> neighbours_;  // per home block: ids of itself and +x,+y,+z...

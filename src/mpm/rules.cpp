@@ -5,36 +5,42 @@
 namespace snapjump::mpm {
 
 void ClampRule::apply(SparseGrid& grid, const StepContext& ctx) {
-  const std::size_t n = grid.num_nodes();
   double impulse_z = 0.0;
-  for (std::size_t a = 0; a < n; ++a) {
-    if ((grid.tags[a] & tag_) == 0 || grid.mass[a] <= 0.0) continue;
-    const double target = grid.mass[a] * body_.vz;
-    impulse_z += target - grid.pz[a];
-    grid.px[a] = 0.0;
-    grid.py[a] = 0.0;
-    grid.pz[a] = target;
+  for (std::size_t b = 0; b < grid.num_blocks(); ++b) {
+    if ((grid.block_tags[b] & tag_) == 0) continue;
+    for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
+      if ((grid.tags[a] & tag_) == 0 || grid.mass[a] <= 0.0) continue;
+      const double target = grid.mass[a] * body_.vz;
+      impulse_z += target - grid.pz[a];
+      grid.px[a] = 0.0;
+      grid.py[a] = 0.0;
+      grid.pz[a] = target;
+    }
   }
   // The body pushed the shell by impulse_z; the shell pushes the body back.
   body_.clamp_force = -impulse_z / ctx.dt;
 }
 
 void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
-  const std::size_t n = grid.num_nodes();
   double normal = 0.0, tangential = 0.0;
-  for (std::size_t a = 0; a < n; ++a) {
-    if (grid.mass[a] <= 0.0 || grid.pz[a] >= 0.0) continue;
-    const auto c = grid.coords(a);
-    if (c[2] > 0 || c[2] <= -layers_) continue;
-    const double dpn = -grid.pz[a];  // normal impulse given by the plate (upward)
-    grid.pz[a] = 0.0;
-    normal += dpn;
-    const double pt = std::hypot(grid.px[a], grid.py[a]);
-    if (pt > 0.0 && mu_ > 0.0) {
-      const double reduced = std::max(0.0, pt - mu_ * dpn);
-      tangential += pt - reduced;
-      grid.px[a] *= reduced / pt;
-      grid.py[a] *= reduced / pt;
+  for (std::size_t b = 0; b < grid.num_blocks(); ++b) {
+    // Only blocks that hold a node layer z = 0, -dx, ..., -(layers - 1) dx.
+    const std::int64_t k0 = grid.block_coords(b)[2] * kBlock;
+    if (k0 > 0 || k0 + kBlock - 1 <= -layers_) continue;
+    for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
+      if (grid.mass[a] <= 0.0 || grid.pz[a] >= 0.0) continue;
+      const auto c = grid.coords(a);
+      if (c[2] > 0 || c[2] <= -layers_) continue;
+      const double dpn = -grid.pz[a];  // normal impulse given by the plate (upward)
+      grid.pz[a] = 0.0;
+      normal += dpn;
+      const double pt = std::hypot(grid.px[a], grid.py[a]);
+      if (pt > 0.0 && mu_ > 0.0) {
+        const double reduced = std::max(0.0, pt - mu_ * dpn);
+        tangential += pt - reduced;
+        grid.px[a] *= reduced / pt;
+        grid.py[a] *= reduced / pt;
+      }
     }
   }
   force_ = normal / ctx.dt;

@@ -71,13 +71,14 @@ void Stepper::update_particle_velocities() {
     throw StepError(fmt::format("t = {:.6g} s, step {}: {}", time_, steps_ + 1, e.what()));
   }
   const double dt = options_.dt;
+  const double keep = 1.0 / (1.0 + options_.damping * dt);  // semi-implicit damping
   const std::size_t n = p_.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {
     const double s = dt / p_.mass[i];
-    p_.v.x[i] += s * f_.x[i];
-    p_.v.y[i] += s * f_.y[i];
-    p_.v.z[i] += s * f_.z[i];
+    p_.v.x[i] = keep * (p_.v.x[i] + s * f_.x[i]);
+    p_.v.y[i] = keep * (p_.v.y[i] + s * f_.y[i]);
+    p_.v.z[i] = keep * (p_.v.z[i] + s * f_.z[i]);
   }
 }
 
@@ -112,6 +113,7 @@ void Stepper::particle_to_grid() {
               grid_.py[node] += mw * (vy + C[3] * dxa + C[4] * dyb + C[5] * dzc);
               grid_.pz[node] += mw * (vz + C[6] * dxa + C[7] * dyb + C[8] * dzc);
               grid_.tags[node] |= tag;
+              grid_.block_tags[node / kBlockNodes] |= tag;
             }
           }
         }

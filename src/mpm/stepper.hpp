@@ -47,6 +47,9 @@ struct StepperOptions {
   // A particle may move at most this fraction of dx in one step (grid CFL); beyond it the step
   // stops with a StepError.
   double max_cfl = 0.5;
+  // Mass-proportional damping c [1/s] (m a = f - c m v), for quasi-static phases only; 0 for
+  // physical runs.
+  double damping = 0.0;
 };
 
 // The time step: the smaller of the elastic bound (cfl_elastic * smallest node spacing / p-wave
@@ -82,6 +85,13 @@ class Stepper {
   [[nodiscard]] const SparseGrid& grid() const { return grid_; }
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] double dt() const { return options_.dt; }
+  [[nodiscard]] double dx() const { return options_.dx; }
+  void set_damping(double c) { options_.damping = c; }
+  // Restarts the clock (the release defines t = 0).
+  void reset_time() {
+    time_ = 0.0;
+    steps_ = 0;
+  }
   [[nodiscard]] long steps() const { return steps_; }
   [[nodiscard]] double kinetic_energy() const;
   // Largest particle speed after the last step, and the grid CFL number it gives.

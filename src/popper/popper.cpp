@@ -1,0 +1,283 @@
+#include "popper/popper.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "fem/explicit.hpp"
+#include "theory/scaling.hpp"
+
+namespace snapjump::popper {
+namespace {
+
+constexpr double kG = config::kStandardGravity;
+
+}  // namespace
+
+Numerics resolve_numerics(const config::Case& c) {
+  Numerics n;
+  n.cap = mesh::cap_spec(c);
+  double dx_fraction = 0.02;  // grid spacing / R
+  switch (c.numerics.resolution) {
+    case config::Resolution::Coarse:
+      dx_fraction = 0.025;
+      break;
+    case config::Resolution::Default:
+      dx_fraction = 0.02;
+      break;
+    case config::Resolution::Fine:
+      dx_fraction = 0.015;
+      break;
+  }
+  // The grid acts on the plate within about one cell of it, so the cell must be well below the
+  // onset distance 0.03 R, and no coarser than the elements.
+  n.dx = std::min(dx_fraction * c.shell.R, n.cap.element_size);
+  if (c.numerics.end_time) n.end_time = *c.numerics.end_time;
+  // Damping of the preparation phases: a third of the shell's membrane frequency sqrt(E/rho)/R.
+  n.prep_damping = 0.3 * std::sqrt(c.material.E / c.material.rho) / c.shell.R;
+  return n;
+}
+
+std::vector<std::string> sample_columns() {
+  return {"t", "z", "r", "w", "e", "F", "delta_p", "vz", "kinetic", "elastic", "gravitational"};
+}
+
+std::vector<double> sample_values(const Sample& s) {
+  return {s.t, s.z, s.r, s.w, s.e, s.F, s.delta_p, s.vz, s.kinetic, s.elastic, s.gravitational};
+}
+
+Popper::Popper(const config::Case& c, const Numerics& n)
+    : case_(c), numerics_(n), gas_(c.gas.p0, c.gas.alpha_n, c.gas.beta_n) {
+  if (!(c.material.nu < 0.5)) {
+    throw config::CaseError(
+        "material.nu = 0.5 is incompressible: the simulator's compressible neo-Hookean body "
+        "needs nu < 0.5 (use 0.49 for a nearly incompressible elastomer)");
+  }
+  body_ = std::make_unique<fem::Body>(
+      mesh::make_cap_mesh(n.cap),
+      fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+  shell_mass_ = body_->total_mass();
+  if (c.popper.moving_mass <= shell_mass_) {
+    throw config::CaseError(fmt::format(
+        "popper.moving_mass = {:.4g} kg is not more than the shell's own mass {:.4g} kg: the "
+        "container and counterweight need some inertia",
+        c.popper.moving_mass, shell_mass_));
+  }
+  delta_p_j_ = theory::jump_pressure(c);
+  const auto& X = body_->mesh().nodes;
+  // The hole of the container is the inner rim circle, whose area the pressure on the inner faces
+  // projects onto: pressure forces on shell and container then cancel exactly.
+  double rim_r = 0.0;
+  int count = 0;
+  std::vector<char> outer(X.size(), 0), inner(X.size(), 0);
+  for (int a : body_->mesh().outer) outer[a] = 1;
+  for (const auto& f : body_->mesh().inner_faces) {
+    for (int a : f) inner[a] = 1;
+  }
+  double rim_z = 0.0;
+  for (int a : body_->mesh().clamped) {
+    if (inner[a]) {
+      rim_r += std::hypot(X.x[a], X.y[a]);
+      ++count;
+    }
+    if (outer[a]) {
+      outer_rim_.push_back(a);
+      rim_z += X.z[a];
+    }
+  }
+  hole_area_ = std::numbers::pi * std::pow(rim_r / count, 2);
+  rim_z /= static_cast<double>(outer_rim_.size());
+  depth_outer_ = rim_z - X.z[body_->mesh().apex];
+
+  forces_ =
+      std::make_unique<mpm::BodyForces>(*body_, kG, [this](double) { return gas_.delta_p(); });
+  elastic_dt_ = body_->stable_time_step(n.cfl);
+  container_.mass = c.popper.moving_mass - shell_mass_;
+}
+
+void Popper::update_container_force(double damping) {
+  // Its share of the net weight, the gas on the hole (inside minus outside pressure), damping.
+  container_.applied_force = -(case_.popper.net_weight - shell_mass_ * kG) -
+                             gas_.delta_p() * hole_area_ -
+                             damping * container_.mass * container_.vz;
+}
+
+void Popper::advance_gas() {
+  gas_.advance(stepper_->dt(),
+               body_->cavity_volume(stepper_->particles().x) + case_.gas.container_volume);
+}
+
+Preparation Popper::prepare(const Progress& progress) {
+  Preparation prep;
+  const double pc =
+      theory::zoelly_pressure(case_.material.E, case_.shell.h, case_.shell.R, case_.material.nu);
+  const auto& mesh = body_->mesh();
+  const auto inverted = [&](const mesh::Points& x) {
+    double rim_z = 0.0;
+    for (int a : outer_rim_) rim_z += x.z[a];
+    rim_z /= static_cast<double>(outer_rim_.size());
+    return x.z[mesh.apex] > rim_z;
+  };
+
+  // Phases 1 and 2, container held in the air: raise the suction past the buckling pressure
+  // until the shell inverts, then bring it to delta_p_j and let it settle.
+  const double p_buckle = 1.4 * pc;
+  const double ramp = 0.02, max_wait = 0.1, down = 0.02, settle = 0.02;
+  double p_now = 0.0;
+  fem::ExplicitOptions eo;
+  eo.cfl = numerics_.cfl;
+  eo.damping = numerics_.prep_damping;
+  eo.pressure = [&](double) { return p_now; };
+  fem::ExplicitDriver d(*body_, eo);
+  double t_inverted = -1.0;
+  while (d.time() < ramp + max_wait) {
+    p_now = p_buckle * std::min(1.0, d.time() / ramp);
+    d.step();
+    if (d.steps() % 200 == 0) {
+      if (progress) progress("buckle", d.time(), -1.0);
+      if (prep.buckling_pressure == 0.0 &&
+          body_->cavity_volume(d.positions()) < 0.5 * body_->cavity_volume(mesh.nodes)) {
+        prep.buckling_pressure = p_now;
+      }
+      if (inverted(d.positions()) && d.kinetic_energy() < 1e-3 * shell_mass_ * 1e-2) {
+        t_inverted = d.time();
+        break;
+      }
+    }
+  }
+  if (t_inverted < 0.0) {
+    prep.message = fmt::format("the shell did not invert under {:.0f} Pa (1.4 p_c)", p_buckle);
+    return prep;
+  }
+  prep.inverted = true;
+  const double t0 = d.time();
+  while (d.time() < t0 + down + settle) {
+    const double f = std::min(1.0, (d.time() - t0) / down);
+    p_now = p_buckle + f * (delta_p_j_ - p_buckle);
+    d.step();
+    if (progress && d.steps() % 200 == 0)
+      progress("set delta_p_j", d.time() - t0, (d.time() - t0) / (down + settle));
+  }
+  if (!inverted(d.positions())) {
+    prep.message =
+        fmt::format("the inverted shell snapped back at delta_p_j = {:.0f} Pa ({:.2f} p_c)",
+                    delta_p_j_, delta_p_j_ / pc);
+    return prep;
+  }
+  prep.held = true;
+
+  // Phase 3: ground. Lower the popper until its lowest point meets the plate's contact layer and
+  // let the container go, damped, until the plate carries the net weight.
+  auto x = d.positions();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (double z : x.z) lowest = std::min(lowest, z);
+  const double shift = 1.2 * numerics_.dx - lowest;
+  for (auto& z : x.z) z += shift;
+  auto particles = mpm::particles_of(*body_);
+  particles.x = x;
+  gas_.hold(delta_p_j_);
+  stepper_ = std::make_unique<mpm::Stepper>(
+      std::move(particles), *forces_,
+      mpm::StepperOptions{elastic_dt_, numerics_.dx, 0.5, numerics_.prep_damping});
+  stepper_->add_rule(std::make_unique<mpm::ClampRule>(container_));
+  plate_ = &dynamic_cast<mpm::PlateRule&>(
+      stepper_->add_rule(std::make_unique<mpm::PlateRule>(case_.friction.mu)));
+  stepper_->add_rigid_body(container_);
+  container_.z = 0.0;
+  container_.vz = 0.0;
+  // Settle with a lighter damping (the container on the shell is a slower oscillator than the
+  // shell alone) until the plate carries the net weight within 2 % over two 5 ms windows.
+  const double ground_damping = numerics_.prep_damping / 3.0, window_length = 5e-3,
+               max_ground_time = 0.2;
+  stepper_->set_damping(ground_damping);
+  double impulse = 0.0, window = 0.0;
+  int good_windows = 0;
+  while (stepper_->time() < max_ground_time) {
+    update_container_force(ground_damping);
+    stepper_->step();
+    impulse += plate_->force() * stepper_->dt();
+    window += stepper_->dt();
+    if (window >= window_length) {
+      prep.plate_force = impulse / window;
+      const bool good = std::abs(prep.plate_force / case_.popper.net_weight - 1.0) < 0.02;
+      good_windows = good ? good_windows + 1 : 0;
+      impulse = window = 0.0;
+      if (good_windows >= 2) break;
+    }
+    if (progress && stepper_->steps() % 200 == 0) {
+      progress("ground", stepper_->time(), stepper_->time() / max_ground_time);
+    }
+  }
+  prep.message = fmt::format(
+      "inverted under {:.0f} Pa ({:.2f} p_c), held at delta_p_j = {:.0f} Pa ({:.2f} p_c), "
+      "grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",
+      p_buckle, p_buckle / pc, delta_p_j_, delta_p_j_ / pc, 1e3 * stepper_->time(),
+      prep.plate_force, case_.popper.net_weight);
+  return prep;
+}
+
+void Popper::release() {
+  if (!stepper_) throw std::logic_error("release() before a successful prepare()");
+  stepper_->set_damping(0.0);
+  // Start the physical run from rest: the damped settling leaves tiny velocities.
+  auto& p = stepper_->particles();
+  std::fill(p.v.x.begin(), p.v.x.end(), 0.0);
+  std::fill(p.v.y.begin(), p.v.y.end(), 0.0);
+  std::fill(p.v.z.begin(), p.v.z.end(), 0.0);
+  std::fill(p.C.begin(), p.C.end(), 0.0);
+  container_.vz = 0.0;
+  stepper_->reset_time();
+  z_release_ = container_.z;
+  gas_.open_valve(body_->cavity_volume(p.x) + case_.gas.container_volume);
+  impulse_ = 0.0;
+  impulse_time_ = 0.0;
+}
+
+void Popper::step() {
+  update_container_force(0.0);
+  stepper_->step();
+  advance_gas();
+  impulse_ += plate_->force() * stepper_->dt();
+  impulse_time_ += stepper_->dt();
+}
+
+Sample Popper::sample() {
+  const auto& p = stepper_->particles();
+  const auto& mesh = body_->mesh();
+  Sample s;
+  s.t = stepper_->time();
+  s.z = container_.z - z_release_;
+  s.vz = container_.vz;
+  s.delta_p = gas_.delta_p();
+  s.F = impulse_time_ > 0.0 ? impulse_ / impulse_time_ : plate_->force();
+  impulse_ = 0.0;
+  impulse_time_ = 0.0;
+  // Contact: outer particles within the plate's reach (1.5 cells: their stencil touches z = 0).
+  const double band = 1.5 * stepper_->dx();
+  bool any = false;
+  for (int a : mesh.outer) {
+    if (p.x.z[a] < band) {
+      any = true;
+      s.r = std::max(s.r, std::hypot(p.x.x[a], p.x.y[a]));
+    }
+  }
+  const int apex = mesh.apex;
+  s.w = p.x.z[apex];
+  s.contact = !any ? measure::ContactState::None
+                   : (s.w < band ? measure::ContactState::Disk : measure::ContactState::Ring);
+  double rim_z = 0.0;
+  for (int a : outer_rim_) rim_z += p.x.z[a];
+  rim_z /= static_cast<double>(outer_rim_.size());
+  s.e = depth_outer_ - (rim_z - p.x.z[apex]);
+  s.kinetic = stepper_->kinetic_energy() + 0.5 * container_.mass * container_.vz * container_.vz;
+  s.elastic = body_->strain_energy(p.x);
+  double pot = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) pot += p.mass[i] * kG * p.x.z[i];
+  s.gravitational = pot + (case_.popper.net_weight - shell_mass_ * kG) * container_.z;
+  return s;
+}
+
+}  // namespace snapjump::popper

@@ -1,0 +1,104 @@
+// The popper: the shell (finite-element body on MPM particles), the rigid container it is glued
+// to, the gas inside, and the plate. It runs the experimental protocol of the paper (buckle, set
+// delta_p_j, ground, release) and measures what the experiment measures.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "config/case.hpp"
+#include "fem/body.hpp"
+#include "measure/time_series.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/stepper.hpp"
+#include "popper/gas.hpp"
+
+namespace snapjump::popper {
+
+// Numerical settings resolved from the case's [numerics] table.
+struct Numerics {
+  mesh::CapSpec cap;                // mesh of the shell
+  double dx = 0.0;                  // grid spacing [m]
+  double cfl = 0.4;                 // elastic time step factor
+  double probe_interval = 1e-4;     // [s] between samples of the time series
+  double snapshot_interval = 5e-3;  // [s] between VTU snapshots
+  double end_time = 0.8;            // [s] after release, unless the flight's apex comes first
+  double prep_damping = 0.0;        // [1/s] mass-proportional damping of phases 1-3
+};
+Numerics resolve_numerics(const config::Case& c);
+
+// One sample of what the experiment measures, plus energies.
+struct Sample {
+  double t = 0, z = 0, r = 0, w = 0, e = 0, F = 0, delta_p = 0, vz = 0;
+  measure::ContactState contact = measure::ContactState::None;
+  double kinetic = 0, elastic = 0, gravitational = 0;
+};
+// Column names of the time series, in the order of Sample (contact is the text column).
+std::vector<std::string> sample_columns();
+std::vector<double> sample_values(const Sample& s);
+
+struct Preparation {
+  bool inverted = false;           // the shell inverted under the buckling pressure
+  bool held = false;               // and stayed inverted at delta_p_j
+  double buckling_pressure = 0.0;  // pressure at which it snapped [Pa]
+  double plate_force = 0.0;        // after grounding, mean plate force over the settling's end [N]
+  std::string message;             // what happened, in words
+};
+
+// Progress callback: phase name, simulated time in the phase, fraction done (0..1, or < 0 when
+// unknown).
+using Progress = std::function<void(const std::string& phase, double t, double fraction)>;
+
+class Popper {
+ public:
+  Popper(const config::Case& c, const Numerics& n);
+
+  // Phases 1-3 (quasi-static, damped): buckle, set delta_p_j, ground. Returns what happened; the
+  // popper is then ready for release() if prep.held.
+  Preparation prepare(const Progress& progress = {});
+  // t = 0: opens the valve; from here on the run is physical (no damping).
+  void release();
+  // One physical step.
+  void step();
+  // Current sample (F is the mean plate force since the previous sample).
+  Sample sample();
+
+  [[nodiscard]] double time() const { return stepper_->time(); }
+  [[nodiscard]] double dt() const { return stepper_->dt(); }
+  [[nodiscard]] const fem::Body& body() const { return *body_; }
+  [[nodiscard]] const mpm::Stepper& stepper() const { return *stepper_; }
+  [[nodiscard]] const mpm::RigidBody& container() const { return container_; }
+  [[nodiscard]] const Gas& gas() const { return gas_; }
+  [[nodiscard]] const config::Case& input() const { return case_; }
+  [[nodiscard]] const Numerics& numerics() const { return numerics_; }
+  [[nodiscard]] double delta_p_j() const { return delta_p_j_; }
+  [[nodiscard]] double elastic_time_step() const { return elastic_dt_; }
+  [[nodiscard]] double hole_area() const { return hole_area_; }
+
+ private:
+  void update_container_force(double damping);
+  void advance_gas();
+
+  config::Case case_;
+  Numerics numerics_;
+  std::unique_ptr<fem::Body> body_;
+  Gas gas_;
+  std::unique_ptr<mpm::BodyForces> forces_;
+  std::unique_ptr<mpm::Stepper> stepper_;
+  mpm::RigidBody container_;
+  mpm::PlateRule* plate_ = nullptr;
+  double delta_p_j_ = 0.0;
+  double elastic_dt_ = 0.0;
+  double hole_area_ = 0.0;  // area of the container's hole: the inner rim circle [m^2]
+  double shell_mass_ = 0.0;
+  double z_release_ = 0.0;      // container z at t = 0
+  double depth_outer_ = 0.0;    // apex to outer rim plane, undeformed [m]
+  std::vector<int> outer_rim_;  // clamped nodes of the outer surface
+  double impulse_ = 0.0;        // plate impulse since the last sample
+  double impulse_time_ = 0.0;
+};
+
+}  // namespace snapjump::popper
