@@ -107,10 +107,7 @@ void SparseGrid::rebuild(const mesh::Points& x) {
   }
 
   const std::size_t nn = block_coords_.size() * kBlockNodes;
-  mass.assign(nn, 0.0);
-  px.assign(nn, 0.0);
-  py.assign(nn, 0.0);
-  pz.assign(nn, 0.0);
+  nodes.assign(nn, Node{});
   tags.assign(nn, 0);
   block_tags.assign(block_coords_.size(), 0);
 }

@@ -29,10 +29,14 @@ class SparseGrid {
   void rebuild(const mesh::Points& x);
 
   // --- nodes ---------------------------------------------------------------------------------
-  [[nodiscard]] std::size_t num_nodes() const { return mass.size(); }
+  // Mass and momentum of a node, together: a transfer touches all four at once.
+  struct Node {
+    double m = 0.0, px = 0.0, py = 0.0, pz = 0.0;
+  };
+  [[nodiscard]] std::size_t num_nodes() const { return nodes.size(); }
   // Integer coordinates of node n (its position is dx times these).
   [[nodiscard]] std::array<std::int64_t, 3> coords(std::size_t n) const;
-  std::vector<double> mass, px, py, pz;  // node mass and momentum
+  std::vector<Node> nodes;
   std::vector<std::uint8_t> tags;        // OR of the tags of the particles that reached the node
   std::vector<std::uint8_t> block_tags;  // OR of the node tags of each block
   // Integer coordinates of block b (its nodes are kBlock times these plus 0..3).

@@ -9,12 +9,12 @@ void ClampRule::apply(SparseGrid& grid, const StepContext& ctx) {
   for (std::size_t b = 0; b < grid.num_blocks(); ++b) {
     if ((grid.block_tags[b] & tag_) == 0) continue;
     for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
-      if ((grid.tags[a] & tag_) == 0 || grid.mass[a] <= 0.0) continue;
-      const double target = grid.mass[a] * body_.vz;
-      impulse_z += target - grid.pz[a];
-      grid.px[a] = 0.0;
-      grid.py[a] = 0.0;
-      grid.pz[a] = target;
+      if ((grid.tags[a] & tag_) == 0 || grid.nodes[a].m <= 0.0) continue;
+      const double target = grid.nodes[a].m * body_.vz;
+      impulse_z += target - grid.nodes[a].pz;
+      grid.nodes[a].px = 0.0;
+      grid.nodes[a].py = 0.0;
+      grid.nodes[a].pz = target;
     }
   }
   // The body pushed the shell by impulse_z; the shell pushes the body back.
@@ -28,18 +28,18 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
     const std::int64_t k0 = grid.block_coords(b)[2] * kBlock;
     if (k0 > 0 || k0 + kBlock - 1 <= -layers_) continue;
     for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
-      if (grid.mass[a] <= 0.0 || grid.pz[a] >= 0.0) continue;
+      if (grid.nodes[a].m <= 0.0 || grid.nodes[a].pz >= 0.0) continue;
       const auto c = grid.coords(a);
       if (c[2] > 0 || c[2] <= -layers_) continue;
-      const double dpn = -grid.pz[a];  // normal impulse given by the plate (upward)
-      grid.pz[a] = 0.0;
+      const double dpn = -grid.nodes[a].pz;  // normal impulse given by the plate (upward)
+      grid.nodes[a].pz = 0.0;
       normal += dpn;
-      const double pt = std::hypot(grid.px[a], grid.py[a]);
+      const double pt = std::hypot(grid.nodes[a].px, grid.nodes[a].py);
       if (pt > 0.0 && mu_ > 0.0) {
         const double reduced = std::max(0.0, pt - mu_ * dpn);
         tangential += pt - reduced;
-        grid.px[a] *= reduced / pt;
-        grid.py[a] *= reduced / pt;
+        grid.nodes[a].px *= reduced / pt;
+        grid.nodes[a].py *= reduced / pt;
       }
     }
   }

@@ -108,10 +108,11 @@ void Stepper::particle_to_grid() {
               const double w = wab * wz.w[c];
               const std::size_t node = grid_.stencil_node(static_cast<std::size_t>(i), a, b, c);
               const double mw = m * w;
-              grid_.mass[node] += mw;
-              grid_.px[node] += mw * (vx + C[0] * dxa + C[1] * dyb + C[2] * dzc);
-              grid_.py[node] += mw * (vy + C[3] * dxa + C[4] * dyb + C[5] * dzc);
-              grid_.pz[node] += mw * (vz + C[6] * dxa + C[7] * dyb + C[8] * dzc);
+              auto& g = grid_.nodes[node];
+              g.m += mw;
+              g.px += mw * (vx + C[0] * dxa + C[1] * dyb + C[2] * dzc);
+              g.py += mw * (vy + C[3] * dxa + C[4] * dyb + C[5] * dzc);
+              g.pz += mw * (vz + C[6] * dxa + C[7] * dyb + C[8] * dzc);
               grid_.tags[node] |= tag;
               grid_.block_tags[node / kBlockNodes] |= tag;
             }
@@ -149,9 +150,9 @@ void Stepper::grid_to_particle() {
           const double dzc = (static_cast<double>(wz.base + c)) * dx - p_.x.z[i];
           const double w = wab * wz.w[c];
           const std::size_t node = grid_.stencil_node(i, a, b, c);
-          const double inv_m = 1.0 / grid_.mass[node];
-          const double gv[3] = {grid_.px[node] * inv_m, grid_.py[node] * inv_m,
-                                grid_.pz[node] * inv_m};
+          const auto& g = grid_.nodes[node];
+          const double inv_m = 1.0 / g.m;
+          const double gv[3] = {g.px * inv_m, g.py * inv_m, g.pz * inv_m};
           const double d[3] = {dxa, dyb, dzc};
           for (int r = 0; r < 3; ++r) {
             v[r] += w * gv[r];

@@ -62,10 +62,10 @@ TEST(Transfers, ParticleToGridConservesMassAndMomentum) {
   const auto& p = s.particles();
   double M = 0, Px = 0, Py = 0, Pz = 0, m = 0, px = 0, py = 0, pz = 0;
   for (std::size_t a = 0; a < g.num_nodes(); ++a) {
-    M += g.mass[a];
-    Px += g.px[a];
-    Py += g.py[a];
-    Pz += g.pz[a];
+    M += g.nodes[a].m;
+    Px += g.nodes[a].px;
+    Py += g.nodes[a].py;
+    Pz += g.nodes[a].pz;
   }
   for (std::size_t i = 0; i < p.size(); ++i) {
     m += p.mass[i];
@@ -121,7 +121,7 @@ double grid_angular_momentum_z(const SparseGrid& g) {
   for (std::size_t a = 0; a < g.num_nodes(); ++a) {
     const auto c = g.coords(a);
     L +=
-        static_cast<double>(c[0]) * g.dx() * g.py[a] - static_cast<double>(c[1]) * g.dx() * g.px[a];
+        static_cast<double>(c[0]) * g.dx() * g.nodes[a].py - static_cast<double>(c[1]) * g.dx() * g.nodes[a].px;
   }
   return L;
 }
