@@ -16,6 +16,7 @@ build: deps
 
 run: build
 	$(BUILD)/snapjump predict
+	$(BUILD)/snapjump run --resolution coarse
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900

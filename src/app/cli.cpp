@@ -1,7 +1,5 @@
 #include "app/cli.hpp"
 
-#include "app/run.hpp"
-
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
@@ -13,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "app/run.hpp"
 #include "config/case.hpp"
 #include "contact/contact.hpp"
 #include "io/prediction_report.hpp"

@@ -1,15 +1,15 @@
 #include "app/run.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
-#include <numbers>
-
-#include <fmt/format.h>
-#include <fmt/ostream.h>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
 #include "app/cli.hpp"
 #include "io/prediction_report.hpp"
@@ -32,7 +32,8 @@ fs::path make_output_folder(const config::Case& c, const std::string& requested)
     const fs::path p(requested);
     if (fs::exists(p) && !(fs::is_directory(p) && fs::is_empty(p))) {
       throw config::CaseError(fmt::format(
-          "--output {}: exists and is not an empty folder; snapjump never overwrites a run", p.string()));
+          "--output {}: exists and is not an empty folder; snapjump never overwrites a run",
+          p.string()));
     }
     fs::create_directories(p);
     return p;
@@ -42,10 +43,11 @@ fs::path make_output_folder(const config::Case& c, const std::string& requested)
   gmtime_r(&now, &tm);
   char stamp[32];
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tm);
-  std::string stem = c.source == "built-in default case" ? "default"
-                                                         : fs::path(c.source).stem().string();
+  std::string stem =
+      c.source == "built-in default case" ? "default" : fs::path(c.source).stem().string();
   fs::path p = fs::path("runs") / fmt::format("{}-{}", stem, stamp);
-  for (int k = 2; fs::exists(p); ++k) p = fs::path("runs") / fmt::format("{}-{}-{}", stem, stamp, k);
+  for (int k = 2; fs::exists(p); ++k)
+    p = fs::path("runs") / fmt::format("{}-{}-{}", stem, stamp, k);
   fs::create_directories(p);
   return p;
 }
@@ -84,6 +86,7 @@ void write_json_file(const fs::path& path, const nlohmann::json& doc) {
 
 int run_simulation(const config::Case& c, const RunOptions& options, std::ostream& out,
                    std::ostream& err) {
+  popper::check_simulable(c);
   const auto numerics = popper::resolve_numerics(c);
   const fs::path dir = make_output_folder(c, options.output);
   fmt::print(out, "snapjump run: {}\n  output      {}\n", c.title.empty() ? c.source : c.title,
@@ -185,10 +188,10 @@ int run_simulation(const config::Case& c, const RunOptions& options, std::ostrea
         last_print = wall();
         const double rate = pop.stepper().steps() / std::max(1e-9, wall() - run_start);
         const double eta = (numerics.end_time - pop.time()) / pop.dt() / std::max(rate, 1e-9);
-        fmt::print(err, "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
-                        "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
-                   wall(), pop.time(), rate, eta, pop.gas().delta_p(),
-                   1e3 * (pop.container().z));
+        fmt::print(err,
+                   "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
+                   "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
+                   wall(), pop.time(), rate, eta, pop.gas().delta_p(), 1e3 * (pop.container().z));
       }
     }
   } catch (const std::exception& e) {

@@ -60,8 +60,10 @@ std::string_view to_string(Resolution r);
 struct Numerics {
   Resolution resolution = Resolution::Default;
   std::optional<double> element_size;  // [m]; from the resolution preset when absent
-  int elements_through_thickness = 2;  // quadratic elements across h
-  std::optional<double> end_time;      // [s]; until the apex of the flight when absent
+  // Quadratic elements across h; from the resolution preset when absent (coarse 1, default and
+  // fine 2).
+  std::optional<int> elements_through_thickness;
+  std::optional<double> end_time;  // [s]; until the apex of the flight when absent
 };
 
 struct Case {

@@ -1,11 +1,10 @@
 // The theory's prediction for one case as a table for people, or JSON / CSV for programs.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <ostream>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "config/case.hpp"
 #include "theory/scaling.hpp"

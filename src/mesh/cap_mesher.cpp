@@ -89,9 +89,11 @@ double polar_angle(Vec d) { return std::acos(std::clamp(-d.z, -1.0, 1.0)); }
 
 CapSpec cap_spec(const config::Case& c) {
   double fraction = 1.0 / 3.5;
+  int layers = 2;
   switch (c.numerics.resolution) {
     case config::Resolution::Coarse:
       fraction = 1.0 / 2.0;
+      layers = 1;
       break;
     case config::Resolution::Default:
       fraction = 1.0 / 3.5;
@@ -105,7 +107,7 @@ CapSpec cap_spec(const config::Case& c) {
   s.h = c.shell.h;
   s.phi = c.shell.phi;
   s.element_size = c.numerics.element_size.value_or(fraction * std::sqrt(c.shell.h * c.shell.R));
-  s.layers = c.numerics.elements_through_thickness;
+  s.layers = c.numerics.elements_through_thickness.value_or(layers);
   return s;
 }
 

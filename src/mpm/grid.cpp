@@ -50,8 +50,10 @@ std::array<std::int64_t, 3> SparseGrid::coords(std::size_t n) const {
 void SparseGrid::rebuild(const mesh::Points& x) {
   const std::size_t np = x.size();
   const double inv_dx = 1.0 / dx_;
-  std::vector<std::uint64_t> keys(np);
-  std::vector<std::array<std::int64_t, 3>> blocks(np);
+  auto& keys = scratch_keys_;
+  auto& blocks = scratch_blocks_;
+  keys.resize(np);
+  blocks.resize(np);
   local_.resize(np);
   bool same = home_key_.size() == np && !block_coords_.empty();
   for (std::size_t p = 0; p < np; ++p) {
@@ -103,13 +105,21 @@ void SparseGrid::rebuild(const mesh::Points& x) {
     order_.resize(np);
     std::vector<int> fill(start_.begin(), start_.end() - 1);
     for (std::size_t p = 0; p < np; ++p) order_[fill[home_[p]]++] = static_cast<int>(p);
-    home_key_ = std::move(keys);
+    home_key_ = keys;
   }
 
   const std::size_t nn = block_coords_.size() * kBlockNodes;
-  nodes.assign(nn, Node{});
-  tags.assign(nn, 0);
+  nodes.resize(nn);
+  tags.resize(nn);
   block_tags.assign(block_coords_.size(), 0);
+  Node* node = nodes.data();
+  std::uint8_t* tag = tags.data();
+  const long n = static_cast<long>(nn);
+#pragma omp parallel for schedule(static)
+  for (long a = 0; a < n; ++a) {
+    node[a] = Node{};
+    tag[a] = 0;
+  }
 }
 
 }  // namespace snapjump::mpm

@@ -74,6 +74,8 @@ class SparseGrid {
 
   double dx_;
   std::vector<std::uint64_t> home_key_;  // per particle: key of its home block, last rebuild
+  std::vector<std::uint64_t> scratch_keys_;               // reused between calls
+  std::vector<std::array<std::int64_t, 3>> scratch_blocks_;
   std::unordered_map<std::uint64_t, int> block_index_;
   std::vector<std::array<std::int64_t, 3>> block_coords_;
   std::vector<std::array<int, 8>> neighbours_;  // per home block: ids of itself and +x,+y,+z...

@@ -49,13 +49,17 @@ std::vector<double> sample_values(const Sample& s) {
   return {s.t, s.z, s.r, s.w, s.e, s.F, s.delta_p, s.vz, s.kinetic, s.elastic, s.gravitational};
 }
 
-Popper::Popper(const config::Case& c, const Numerics& n)
-    : case_(c), numerics_(n), gas_(c.gas.p0, c.gas.alpha_n, c.gas.beta_n) {
+void check_simulable(const config::Case& c) {
   if (!(c.material.nu < 0.5)) {
     throw config::CaseError(
         "material.nu = 0.5 is incompressible: the simulator's compressible neo-Hookean body "
         "needs nu < 0.5 (use 0.49 for a nearly incompressible elastomer)");
   }
+}
+
+Popper::Popper(const config::Case& c, const Numerics& n)
+    : case_(c), numerics_(n), gas_(c.gas.p0, c.gas.alpha_n, c.gas.beta_n) {
+  check_simulable(c);
   body_ = std::make_unique<fem::Body>(
       mesh::make_cap_mesh(n.cap),
       fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));

@@ -30,6 +30,9 @@ struct Numerics {
 };
 Numerics resolve_numerics(const config::Case& c);
 
+// What the simulator needs beyond a valid case (nu < 1/2). Throws config::CaseError.
+void check_simulable(const config::Case& c);
+
 // One sample of what the experiment measures, plus energies.
 struct Sample {
   double t = 0, z = 0, r = 0, w = 0, e = 0, F = 0, delta_p = 0, vz = 0;

@@ -205,3 +205,32 @@ TEST(Cli, AnalyzeRejectsAWrongUnitOnAFlag) {
 
 }  // namespace
 }  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+TEST(Cli, RunNeverOverwritesAnOutputFolder) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_existing_run";
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "series.csv") << "t,F\n";
+  const auto r = run({"run", "--output", dir.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("never overwrites"), std::string::npos) << r.err;
+  // the file that was there is untouched
+  std::ifstream in(dir / "series.csv");
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "t,F");
+}
+
+TEST(Cli, RunRefusesAnIncompressibleMaterialBeforeWritingAnything) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_nu_half";
+  std::filesystem::remove_all(dir);
+  const auto r = run({"run", "--nu", "0.5", "--output", dir.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("nu < 0.5"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+}  // namespace
+}  // namespace snapjump::app

@@ -126,7 +126,7 @@ end_time = "0.5 s"
   EXPECT_DOUBLE_EQ(*c.protocol.delta_p_j, 4000.0);
   EXPECT_EQ(c.numerics.resolution, Resolution::Coarse);
   EXPECT_DOUBLE_EQ(*c.numerics.element_size, 1e-3);
-  EXPECT_EQ(c.numerics.elements_through_thickness, 3);
+  EXPECT_EQ(c.numerics.elements_through_thickness.value_or(0), 3);
   EXPECT_DOUBLE_EQ(*c.numerics.end_time, 0.5);
   EXPECT_TRUE(c.defaults_used.empty());
 }

@@ -99,6 +99,9 @@ TEST(CapMesh, SpecFromACase) {
   EXPECT_DOUBLE_EQ(s.R, 0.030);
   c.numerics.resolution = config::Resolution::Fine;
   EXPECT_NEAR(cap_spec(c).element_size, std::sqrt(0.002 * 0.030) / 5.0, 1e-15);
+  EXPECT_EQ(cap_spec(c).layers, 2);
+  c.numerics.resolution = config::Resolution::Coarse;
+  EXPECT_EQ(cap_spec(c).layers, 1);
   c.numerics.element_size = 0.004;
   c.numerics.elements_through_thickness = 3;
   s = cap_spec(c);

@@ -120,8 +120,8 @@ double grid_angular_momentum_z(const SparseGrid& g) {
   double L = 0.0;
   for (std::size_t a = 0; a < g.num_nodes(); ++a) {
     const auto c = g.coords(a);
-    L +=
-        static_cast<double>(c[0]) * g.dx() * g.nodes[a].py - static_cast<double>(c[1]) * g.dx() * g.nodes[a].px;
+    L += static_cast<double>(c[0]) * g.dx() * g.nodes[a].py -
+         static_cast<double>(c[1]) * g.dx() * g.nodes[a].px;
   }
   return L;
 }

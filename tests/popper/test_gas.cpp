@@ -1,8 +1,8 @@
-#include "popper/gas.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
+
+#include "popper/gas.hpp"
 
 namespace snapjump::popper {
 namespace {

@@ -1,0 +1,63 @@
+// Where an MPM step of a popper's shell goes: times each stage of mpm::Stepper over 100 steps and
+// prints milliseconds per step. Usage: profile_step [coarse|default|fine] (default: default).
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include "config/case.hpp"
+#include "fem/body.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/stepper.hpp"
+#include "popper/popper.hpp"
+
+int main(int argc, char** argv) {
+  using namespace snapjump;
+  auto c = config::default_case();
+  const std::string preset = argc > 1 ? argv[1] : "default";
+  if (preset == "coarse") c.numerics.resolution = config::Resolution::Coarse;
+  if (preset == "fine") c.numerics.resolution = config::Resolution::Fine;
+  const auto numerics = popper::resolve_numerics(c);
+  auto m = mesh::make_cap_mesh(numerics.cap);
+  mesh::translate_z(m, c.shell.R + c.shell.h);
+  const fem::Body body(std::move(m),
+                       fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+  mpm::BodyForces forces(body, config::kStandardGravity, [](double) { return 1000.0; });
+  mpm::Stepper s(mpm::particles_of(body), forces,
+                 {body.stable_time_step(numerics.cfl), numerics.dx, 0.5});
+  mpm::RigidBody container;
+  container.mass = 0.04;
+  s.add_rule(std::make_unique<mpm::ClampRule>(container));
+  s.add_rule(std::make_unique<mpm::PlateRule>(0.3));
+  s.add_rigid_body(container);
+  using Clock = std::chrono::steady_clock;
+  const auto ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  double t[4] = {};
+  constexpr int kSteps = 100;
+  for (int k = 0; k < kSteps; ++k) {
+    const auto a = Clock::now();
+    s.update_particle_velocities();
+    const auto b = Clock::now();
+    s.particle_to_grid();
+    const auto c2 = Clock::now();
+    s.apply_grid_rules();
+    const auto d = Clock::now();
+    s.grid_to_particle();
+    const auto e = Clock::now();
+    s.advance_rigid_bodies();
+    t[0] += ms(a, b);
+    t[1] += ms(b, c2);
+    t[2] += ms(c2, d);
+    t[3] += ms(d, e);
+  }
+  std::printf("%s cap: %zu particles, %zu elements, dx %.3g mm, %zu grid nodes\n", preset.c_str(),
+              body.num_nodes(), body.num_elements(), 1e3 * numerics.dx, s.grid().num_nodes());
+  std::printf(
+      "ms per step: forces %.2f, particle to grid %.2f, grid rules %.2f, grid to particle "
+      "%.2f, total %.2f\n",
+      t[0] / kSteps, t[1] / kSteps, t[2] / kSteps, t[3] / kSteps,
+      (t[0] + t[1] + t[2] + t[3]) / kSteps);
+  return 0;
+}
