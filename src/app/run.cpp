@@ -52,26 +52,6 @@ fs::path make_output_folder(const config::Case& c, const std::string& requested)
   return p;
 }
 
-nlohmann::json case_json(const config::Case& c) {
-  return {{"title", c.title},
-          {"source", c.source},
-          {"R", c.shell.R},
-          {"h", c.shell.h},
-          {"phi", c.shell.phi},
-          {"E", c.material.E},
-          {"nu", c.material.nu},
-          {"rho", c.material.rho},
-          {"net_weight", c.popper.net_weight},
-          {"moving_mass", c.popper.moving_mass},
-          {"mu", c.friction.mu},
-          {"container_volume", c.gas.container_volume},
-          {"p0", c.gas.p0},
-          {"alpha_n", c.gas.alpha_n},
-          {"beta_n", c.gas.beta_n},
-          {"resolution", std::string(config::to_string(c.numerics.resolution))},
-          {"defaults_used", c.defaults_used}};
-}
-
 void write_json_file(const fs::path& path, const nlohmann::json& doc) {
   const auto tmp = path.string() + ".tmp";
   {
@@ -91,7 +71,7 @@ int run_simulation(const config::Case& c, const RunOptions& options, std::ostrea
   const fs::path dir = make_output_folder(c, options.output);
   fmt::print(out, "snapjump run: {}\n  output      {}\n", c.title.empty() ? c.source : c.title,
              dir.string());
-  nlohmann::json summary = {{"case", case_json(c)}, {"status", "running"}};
+  nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", "running"}};
   write_json_file(dir / "summary.json", summary);
 
   const auto start = Clock::now();

@@ -116,6 +116,26 @@ void write_table(std::ostream& out, const config::Case& c, const theory::Predict
   }
 }
 
+nlohmann::json case_to_json(const config::Case& c) {
+  return {{"title", c.title},
+          {"source", c.source},
+          {"R", c.shell.R},
+          {"h", c.shell.h},
+          {"phi", c.shell.phi},
+          {"E", c.material.E},
+          {"nu", c.material.nu},
+          {"rho", c.material.rho},
+          {"net_weight", c.popper.net_weight},
+          {"moving_mass", c.popper.moving_mass},
+          {"mu", c.friction.mu},
+          {"container_volume", c.gas.container_volume},
+          {"p0", c.gas.p0},
+          {"alpha_n", c.gas.alpha_n},
+          {"beta_n", c.gas.beta_n},
+          {"resolution", std::string(config::to_string(c.numerics.resolution))},
+          {"defaults_used", c.defaults_used}};
+}
+
 nlohmann::json to_json(const config::Case& c, const theory::Prediction& p) {
   using nlohmann::json;
   // Infinite margins (no lift needed) become null: JSON has no infinity.
@@ -129,19 +149,7 @@ nlohmann::json to_json(const config::Case& c, const theory::Prediction& p) {
   if (p.outcome.snap) outcome.push_back("Snap");
   if (p.outcome.no_snap) outcome.push_back("No snap");
   const json doc = {
-      {"case",
-       {{"title", c.title},
-        {"source", c.source},
-        {"R", c.shell.R},
-        {"h", c.shell.h},
-        {"phi", c.shell.phi},
-        {"E", c.material.E},
-        {"nu", c.material.nu},
-        {"rho", c.material.rho},
-        {"net_weight", c.popper.net_weight},
-        {"moving_mass", c.popper.moving_mass},
-        {"mu", c.friction.mu},
-        {"defaults_used", c.defaults_used}}},
+      {"case", case_to_json(c)},
       {"units", "SI"},
       {"constants_source", p.constants_source},
       {"quantities", quantities},

@@ -27,6 +27,8 @@ struct ReportRow {
 std::vector<ReportRow> prediction_rows(const theory::Prediction& p);
 
 void write_table(std::ostream& out, const config::Case& c, const theory::Prediction& p);
+// The case's values in SI (and the defaults it used), for JSON reports.
+nlohmann::json case_to_json(const config::Case& c);
 nlohmann::json to_json(const config::Case& c, const theory::Prediction& p);
 void write_json(std::ostream& out, const config::Case& c, const theory::Prediction& p);
 void write_csv(std::ostream& out, const theory::Prediction& p);
