@@ -300,6 +300,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   run_cmd->add_option("--resolution", run_resolution, "coarse, default or fine")
       ->check(CLI::IsMember({"coarse", "default", "fine"}));
   run_cmd->add_flag("--quiet", run_opts.quiet, "no progress lines");
+  std::string pause_at;
+  run_cmd->add_option("--pause-at", pause_at,
+                      "stop at this time after the release (e.g. 0.2s), leaving a checkpoint");
+  run_cmd
+      ->add_option("--resume", run_opts.resume,
+                   "continue a stopped or paused run in this folder from its last checkpoint")
+      ->check(CLI::ExistingDirectory);
 
   try {
     app.parse(argc, argv);
@@ -313,6 +320,15 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
     if (analyze->parsed()) return analyze_cmd(analyze_opts, out);
     if (run_cmd->parsed()) {
+      if (!pause_at.empty()) {
+        const units::UnitParser parser;
+        try {
+          run_opts.pause_at = parser.parse(pause_at, units::Dimension::Time);
+        } catch (const units::UnitError& e) {
+          throw config::CaseError(fmt::format("--pause-at: {}", e.what()));
+        }
+      }
+      if (!run_opts.resume.empty()) return run_simulation(config::Case{}, run_opts, out, err);
       auto c = run_case.load();
       if (run_resolution == "coarse") c.numerics.resolution = config::Resolution::Coarse;
       if (run_resolution == "default") c.numerics.resolution = config::Resolution::Default;

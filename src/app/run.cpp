@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "io/vtu.hpp"
 #include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
+#include "mpm/stepper.hpp"
 #include "popper/popper.hpp"
 #include "theory/scaling.hpp"
 
@@ -62,30 +64,116 @@ void write_json_file(const fs::path& path, const nlohmann::json& doc) {
   fs::rename(tmp, path);
 }
 
+// What the release loop needs besides the popper, saved in checkpoints with it.
+struct LoopState {
+  double next_sample = 0.0, next_snapshot = 0.0, next_checkpoint = 0.0;
+  double airborne_since = -1.0;
+  std::uint64_t rows = 0;  // rows of series.csv that belong to this state
+  std::vector<std::pair<double, std::string>> frames;
+};
+
+constexpr char kLoopMagic[] = "snapjump-run-loop-1";
+
+void save_checkpoint(const fs::path& dir, const popper::Popper& pop, const LoopState& s) {
+  const fs::path tmp = dir / "checkpoint.bin.tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary);
+    pop.save_state(f);
+    f.write(kLoopMagic, sizeof kLoopMagic);
+    const double d[4] = {s.next_sample, s.next_snapshot, s.next_checkpoint, s.airborne_since};
+    f.write(reinterpret_cast<const char*>(d), sizeof d);
+    f.write(reinterpret_cast<const char*>(&s.rows), sizeof s.rows);
+    const std::uint64_t n = s.frames.size();
+    f.write(reinterpret_cast<const char*>(&n), sizeof n);
+    for (const auto& [t, name] : s.frames) {
+      const std::uint64_t len = name.size();
+      f.write(reinterpret_cast<const char*>(&t), sizeof t);
+      f.write(reinterpret_cast<const char*>(&len), sizeof len);
+      f.write(name.data(), static_cast<std::streamsize>(len));
+    }
+    if (!f) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+  }
+  fs::rename(tmp, dir / "checkpoint.bin");
+}
+
+LoopState load_checkpoint(const fs::path& dir, popper::Popper& pop) {
+  std::ifstream f(dir / "checkpoint.bin", std::ios::binary);
+  if (!f) {
+    throw config::CaseError(
+        fmt::format("--resume {}: no checkpoint.bin; the run stopped before its first checkpoint "
+                    "(run it again)",
+                    dir.string()));
+  }
+  pop.load_state(f);
+  char magic[sizeof kLoopMagic] = {};
+  f.read(magic, sizeof magic);
+  if (!f || std::string(magic) != kLoopMagic) throw std::runtime_error("checkpoint.bin is damaged");
+  LoopState s;
+  double d[4];
+  f.read(reinterpret_cast<char*>(d), sizeof d);
+  s.next_sample = d[0];
+  s.next_snapshot = d[1];
+  s.next_checkpoint = d[2];
+  s.airborne_since = d[3];
+  f.read(reinterpret_cast<char*>(&s.rows), sizeof s.rows);
+  std::uint64_t n = 0;
+  f.read(reinterpret_cast<char*>(&n), sizeof n);
+  for (std::uint64_t k = 0; k < n && f; ++k) {
+    double t = 0.0;
+    std::uint64_t len = 0;
+    f.read(reinterpret_cast<char*>(&t), sizeof t);
+    f.read(reinterpret_cast<char*>(&len), sizeof len);
+    std::string name(len, '\0');
+    f.read(name.data(), static_cast<std::streamsize>(len));
+    s.frames.emplace_back(t, name);
+  }
+  if (!f) throw std::runtime_error("checkpoint.bin is truncated");
+  return s;
+}
+
+void print_numerics(std::ostream& out, const popper::Popper& pop, const mpm::TimeStep& step) {
+  const auto& n = pop.numerics();
+  fmt::print(out,
+             "  mesh        {} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} "
+             "layers)\n  grid        {:.3g} mm cells\n  time step   {:.3g} us (elastic bound "
+             "{:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
+             pop.body().num_elements(), pop.body().num_nodes(), 1e3 * n.cap.element_size,
+             n.cap.layers, 1e3 * n.dx, 1e6 * step.dt, 1e6 * step.elastic, 1e6 * step.grid,
+             step.limiting);
+}
+
 }  // namespace
 
-int run_simulation(const config::Case& c, const RunOptions& options, std::ostream& out,
+int run_simulation(const config::Case& case_in, const RunOptions& options, std::ostream& out,
                    std::ostream& err) {
+  const bool resuming = !options.resume.empty();
+  fs::path dir;
+  config::Case c = case_in;
+  if (resuming) {
+    dir = options.resume;
+    if (!fs::is_regular_file(dir / "case.toml")) {
+      throw config::CaseError(
+          fmt::format("--resume {}: not a snapjump run folder (no case.toml)", dir.string()));
+    }
+    c = config::load_case_file(dir / "case.toml");
+  }
   popper::check_simulable(c);
   const auto numerics = popper::resolve_numerics(c);
-  const fs::path dir = make_output_folder(c, options.output);
-  fmt::print(out, "snapjump run: {}\n  output      {}\n", c.title.empty() ? c.source : c.title,
-             dir.string());
+  if (!resuming) dir = make_output_folder(c, options.output);
+  fmt::print(out, "snapjump run: {}\n  output      {}{}\n", c.title.empty() ? c.source : c.title,
+             dir.string(), resuming ? " (resumed)" : "");
   nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", "running"}};
-  write_json_file(dir / "summary.json", summary);
+  if (!resuming) {
+    std::ofstream(dir / "case.toml") << config::to_toml(c);
+    write_json_file(dir / "summary.json", summary);
+  }
 
   const auto start = Clock::now();
   const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   popper::Popper pop(c, numerics);
   const auto& body = pop.body();
   const auto step = mpm::choose_time_step(pop.elastic_time_step(), numerics.dx, 2.0, 0.5);
-  fmt::print(out,
-             "  mesh        {} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} "
-             "layers)\n  grid        {:.3g} mm cells\n  time step   {:.3g} us (elastic bound "
-             "{:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
-             body.num_elements(), body.num_nodes(), 1e3 * numerics.cap.element_size,
-             numerics.cap.layers, 1e3 * numerics.dx, 1e6 * step.dt, 1e6 * step.elastic,
-             1e6 * step.grid, step.limiting);
+  print_numerics(out, pop, step);
   summary["numerics"] = {{"elements", body.num_elements()},
                          {"particles", body.num_nodes()},
                          {"element_size", numerics.cap.element_size},
@@ -97,86 +185,143 @@ int run_simulation(const config::Case& c, const RunOptions& options, std::ostrea
                          {"end_time", numerics.end_time}};
 
   double last_print = -1.0;
-  const auto progress = [&](const std::string& phase, double t, double fraction) {
-    if (options.quiet || wall() - last_print < 2.0) return;
-    last_print = wall();
-    fmt::print(err, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t,
-               fraction >= 0 ? fmt::format(" ({:.0f} %)", 100 * fraction) : std::string());
-  };
-  const auto prep = pop.prepare(progress);
-  fmt::print(out, "  prepared    {}\n", prep.message);
-  summary["preparation"] = {{"inverted", prep.inverted},
-                            {"held", prep.held},
-                            {"buckling_pressure", prep.buckling_pressure},
-                            {"delta_p_j", pop.delta_p_j()},
-                            {"plate_force", prep.plate_force},
-                            {"message", prep.message}};
-  if (!prep.held) {
-    summary["status"] = prep.inverted ? "snapped back before release" : "did not invert";
-    write_json_file(dir / "summary.json", summary);
-    fmt::print(out, "  result      {}\n", summary["status"].get<std::string>());
-    return kExitOk;
-  }
-
-  pop.release();
   const auto columns = popper::sample_columns();
   measure::TimeSeries series(columns, true);
-  measure::CsvWriter csv(dir / "series.csv", columns, true);
-  csv.write_comment(fmt::format("snapjump run of {}; SI units; t = 0 at the release", c.source));
-  fs::create_directories(dir / "snapshots");
+  LoopState loop;
+  std::optional<measure::CsvWriter> csv;
   io::PvdCollection pvd(dir / "run.pvd");
   const auto snapshot = [&]() {
     const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd.size());
     io::write_vtu(dir / name, body, pop.stepper().particles().x, pop.stepper().particles().v);
     pvd.add(pop.time(), name);
+    loop.frames.emplace_back(pop.time(), name);
   };
   const auto record = [&]() {
     const auto s = pop.sample();
     const auto values = popper::sample_values(s);
     series.add_row(values, s.contact);
-    csv.write_row(values, s.contact);
+    csv->write_row(values, s.contact);
+    ++loop.rows;
     return s;
   };
-  record();
-  snapshot();
-  double next_sample = numerics.probe_interval, next_snapshot = numerics.snapshot_interval;
-  double airborne_since = -1.0;
+  const std::string comment =
+      "snapjump run (the case is in case.toml); SI units; t = 0 at the release";
+
+  if (resuming) {
+    if (std::ifstream prev(dir / "summary.json"); prev) {
+      const auto before = nlohmann::json::parse(prev, nullptr, false);
+      if (before.is_object() && before.contains("preparation")) {
+        summary["preparation"] = before["preparation"];
+      }
+    }
+    loop = load_checkpoint(dir, pop);
+    // The series as it was at the checkpoint: rows written after it are dropped.
+    const auto old = measure::TimeSeries::read_csv_file(dir / "series.csv");
+    if (old.size() < loop.rows)
+      throw std::runtime_error("series.csv is shorter than its checkpoint");
+    csv.emplace(dir / "series.csv", columns, true);
+    csv->write_comment(comment);
+    std::vector<double> row(columns.size());
+    for (std::size_t i = 0; i < loop.rows; ++i) {
+      for (std::size_t k = 0; k < columns.size(); ++k) row[k] = old.column(columns[k])[i];
+      series.add_row(row, old.contact()[i]);
+      csv->write_row(row, old.contact()[i]);
+    }
+    const auto frames = loop.frames;
+    loop.frames.clear();
+    for (const auto& [t, name] : frames) {
+      pvd.add(t, name);
+      loop.frames.emplace_back(t, name);
+    }
+    fmt::print(out, "  resumed     at t = {:.4f} s, step {}\n", pop.time(), pop.stepper().steps());
+  } else {
+    const auto progress = [&](const std::string& phase, double t, double fraction) {
+      if (options.quiet || wall() - last_print < 2.0) return;
+      last_print = wall();
+      fmt::print(err, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t,
+                 fraction >= 0 ? fmt::format(" ({:.0f} %)", 100 * fraction) : std::string());
+    };
+    const auto prep = pop.prepare(progress);
+    fmt::print(out, "  prepared    {}\n", prep.message);
+    summary["preparation"] = {{"inverted", prep.inverted},
+                              {"held", prep.held},
+                              {"buckling_pressure", prep.buckling_pressure},
+                              {"delta_p_j", pop.delta_p_j()},
+                              {"plate_force", prep.plate_force},
+                              {"message", prep.message}};
+    if (!prep.held) {
+      summary["status"] = prep.inverted ? "snapped back before release" : "did not invert";
+      write_json_file(dir / "summary.json", summary);
+      fmt::print(out, "  result      {}\n", summary["status"].get<std::string>());
+      return kExitOk;
+    }
+    write_json_file(dir / "summary.json", summary);
+    pop.release();
+    csv.emplace(dir / "series.csv", columns, true);
+    csv->write_comment(comment);
+    fs::create_directories(dir / "snapshots");
+    record();
+    snapshot();
+    loop.next_sample = numerics.probe_interval;
+    loop.next_snapshot = numerics.snapshot_interval;
+    loop.next_checkpoint = numerics.checkpoint_interval;
+  }
+
   std::string status = "completed";
   const double run_start = wall();
+  const long start_steps = pop.stepper().steps();
+  bool paused = false;
   try {
     while (pop.time() < numerics.end_time) {
       pop.step();
-      if (pop.time() + 1e-12 >= next_sample) {
-        next_sample += numerics.probe_interval;
+      if (pop.time() + 1e-12 >= loop.next_sample) {
+        loop.next_sample += numerics.probe_interval;
         const auto s = record();
         // Stop at the apex of the flight: off the plate for 5 ms and coming down.
         if (s.contact == measure::ContactState::None && s.F == 0.0) {
-          if (airborne_since < 0) airborne_since = s.t;
+          if (loop.airborne_since < 0) loop.airborne_since = s.t;
         } else {
-          airborne_since = -1.0;
+          loop.airborne_since = -1.0;
         }
-        if (airborne_since >= 0 && s.t - airborne_since > 5e-3 && s.vz < 0.0) {
+        if (loop.airborne_since >= 0 && s.t - loop.airborne_since > 5e-3 && s.vz < 0.0) {
           status = "completed (apex of the flight)";
           break;
         }
       }
-      if (pop.time() + 1e-12 >= next_snapshot) {
-        next_snapshot += numerics.snapshot_interval;
+      if (pop.time() + 1e-12 >= loop.next_snapshot) {
+        loop.next_snapshot += numerics.snapshot_interval;
         snapshot();
+      }
+      const bool pause_now = options.pause_at && pop.time() + 1e-12 >= *options.pause_at;
+      if (pop.time() + 1e-12 >= loop.next_checkpoint || pause_now) {
+        loop.next_checkpoint += numerics.checkpoint_interval;
+        save_checkpoint(dir, pop, loop);
+      }
+      if (pause_now) {
+        paused = true;
+        break;
       }
       if (!options.quiet && wall() - last_print >= 5.0) {
         last_print = wall();
-        const double rate = pop.stepper().steps() / std::max(1e-9, wall() - run_start);
+        const double rate =
+            (pop.stepper().steps() - start_steps) / std::max(1e-9, wall() - run_start);
         const double eta = (numerics.end_time - pop.time()) / pop.dt() / std::max(rate, 1e-9);
         fmt::print(err,
                    "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
                    "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
-                   wall(), pop.time(), rate, eta, pop.gas().delta_p(), 1e3 * (pop.container().z));
+                   wall(), pop.time(), rate, eta, pop.gas().delta_p(), 1e3 * pop.container().z);
       }
     }
   } catch (const std::exception& e) {
     status = fmt::format("failed: {}", e.what());
     fmt::print(err, "error: {}\n  what was written so far stays in {}\n", e.what(), dir.string());
+  }
+  if (paused) {
+    summary["status"] = fmt::format(
+        "paused at t = {:.6g} s; continue with snapjump run --resume {}", pop.time(), dir.string());
+    write_json_file(dir / "summary.json", summary);
+    fmt::print(out, "  status      {}\n", summary["status"].get<std::string>());
+    return kExitOk;
   }
   snapshot();
 

@@ -12,6 +12,10 @@ namespace snapjump::app {
 struct RunOptions {
   std::string output;  // folder to create; empty: runs/<case name>-<date-time>
   bool quiet = false;  // no progress lines
+  // Stop at this simulated time after the release, leaving a checkpoint to resume from.
+  std::optional<double> pause_at;
+  // Continue the run in this folder from its checkpoint (the case comes from its case.toml).
+  std::string resume;
 };
 
 // Runs the protocol (buckle, set, ground, release) and writes series.csv, summary.json,

@@ -352,6 +352,35 @@ std::span<const KeySpec> quantity_keys() { return kKeys; }
 
 std::string_view default_case_text() { return kDefaultCase; }
 
+std::string to_toml(const Case& c) {
+  // Every number with 17 significant digits, which reads back to the same double.
+  const auto num = [](double v) { return fmt::format("{:.17g}", v); };
+  std::string t = fmt::format("# {} with every value in SI (written by snapjump)\n", c.source);
+  t += fmt::format("title = \"{}\"\n", c.title);
+  t += fmt::format("\n[shell]\nR = {}\nh = {}\nphi = {}\n", num(c.shell.R), num(c.shell.h),
+                   num(c.shell.phi));
+  t += fmt::format("\n[material]\nE = {}\nnu = {}\nrho = {}\n", num(c.material.E),
+                   num(c.material.nu), num(c.material.rho));
+  t += fmt::format("\n[popper]\nnet_weight = {}\nmoving_mass = {}\n", num(c.popper.net_weight),
+                   num(c.popper.moving_mass));
+  t += fmt::format("\n[friction]\nmu = {}\n", num(c.friction.mu));
+  t += fmt::format("\n[gas]\ncontainer_volume = {}\np0 = {}\nalpha_n = {}\nbeta_n = {}\n",
+                   num(c.gas.container_volume), num(c.gas.p0), num(c.gas.alpha_n),
+                   num(c.gas.beta_n));
+  t += "\n[protocol]\n";
+  t += c.protocol.delta_p_j
+           ? fmt::format("delta_p_j = {}\n", num(*c.protocol.delta_p_j))
+           : fmt::format("delta_p_j_over_pc = {}\n", num(c.protocol.delta_p_j_over_pc));
+  t += fmt::format("\n[numerics]\nresolution = \"{}\"\n", to_string(c.numerics.resolution));
+  if (c.numerics.element_size)
+    t += fmt::format("element_size = {}\n", num(*c.numerics.element_size));
+  if (c.numerics.elements_through_thickness) {
+    t += fmt::format("elements_through_thickness = {}\n", *c.numerics.elements_through_thickness);
+  }
+  if (c.numerics.end_time) t += fmt::format("end_time = {}\n", num(*c.numerics.end_time));
+  return t;
+}
+
 Case parse_case(std::string_view toml_text, std::string_view source,
                 std::span<const Override> overrides, const units::UnitParser* parser) {
   std::optional<units::UnitParser> own;

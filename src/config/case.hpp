@@ -125,4 +125,8 @@ Case default_case(std::span<const Override> overrides = {},
 // The text of the built-in default case (the same as examples/default.toml).
 std::string_view default_case_text();
 
+// The case as a case file with every value in SI (defaults written out), so that a run can be
+// repeated or resumed exactly: parse_case(to_toml(c)) gives back the same values.
+std::string to_toml(const Case& c);
+
 }  // namespace snapjump::config

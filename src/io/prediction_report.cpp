@@ -149,12 +149,8 @@ nlohmann::json to_json(const config::Case& c, const theory::Prediction& p) {
   if (p.outcome.snap) outcome.push_back("Snap");
   if (p.outcome.no_snap) outcome.push_back("No snap");
   const json doc = {
-      {"case", case_to_json(c)},
-      {"units", "SI"},
-      {"constants_source", p.constants_source},
-      {"quantities", quantities},
-      {"outcome", outcome},
-      {"outcome_text", p.outcome.text()},
+      {"case", case_to_json(c)},  {"units", "SI"},      {"constants_source", p.constants_source},
+      {"quantities", quantities}, {"outcome", outcome}, {"outcome_text", p.outcome.text()},
   };
   return doc;
 }

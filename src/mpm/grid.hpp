@@ -73,8 +73,8 @@ class SparseGrid {
   int block_id(std::int64_t bx, std::int64_t by, std::int64_t bz);
 
   double dx_;
-  std::vector<std::uint64_t> home_key_;  // per particle: key of its home block, last rebuild
-  std::vector<std::uint64_t> scratch_keys_;               // reused between calls
+  std::vector<std::uint64_t> home_key_;      // per particle: key of its home block, last rebuild
+  std::vector<std::uint64_t> scratch_keys_;  // reused between calls
   std::vector<std::array<std::int64_t, 3>> scratch_blocks_;
   std::unordered_map<std::uint64_t, int> block_index_;
   std::vector<std::array<std::int64_t, 3>> block_coords_;

@@ -88,9 +88,10 @@ class Stepper {
   [[nodiscard]] double dx() const { return options_.dx; }
   void set_damping(double c) { options_.damping = c; }
   // Restarts the clock (the release defines t = 0).
-  void reset_time() {
-    time_ = 0.0;
-    steps_ = 0;
+  void reset_time() { restore_clock(0.0, 0); }
+  void restore_clock(double time, long steps) {
+    time_ = time;
+    steps_ = steps;
   }
   [[nodiscard]] long steps() const { return steps_; }
   [[nodiscard]] double kinetic_energy() const;

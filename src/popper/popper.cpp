@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include "fem/explicit.hpp"
 #include "theory/scaling.hpp"
@@ -183,13 +184,7 @@ Preparation Popper::prepare(const Progress& progress) {
   auto particles = mpm::particles_of(*body_);
   particles.x = x;
   gas_.hold(delta_p_j_);
-  stepper_ = std::make_unique<mpm::Stepper>(
-      std::move(particles), *forces_,
-      mpm::StepperOptions{elastic_dt_, numerics_.dx, 0.5, numerics_.prep_damping});
-  stepper_->add_rule(std::make_unique<mpm::ClampRule>(container_));
-  plate_ = &dynamic_cast<mpm::PlateRule&>(
-      stepper_->add_rule(std::make_unique<mpm::PlateRule>(case_.friction.mu)));
-  stepper_->add_rigid_body(container_);
+  build_stepper(std::move(particles), numerics_.prep_damping);
   container_.z = 0.0;
   container_.vz = 0.0;
   // Settle with a lighter damping (the container on the shell is a slower oscillator than the
@@ -221,6 +216,97 @@ Preparation Popper::prepare(const Progress& progress) {
       p_buckle, p_buckle / pc, delta_p_j_, delta_p_j_ / pc, 1e3 * stepper_->time(),
       prep.plate_force, case_.popper.net_weight);
   return prep;
+}
+
+void Popper::build_stepper(mpm::Particles particles, double damping) {
+  stepper_ = std::make_unique<mpm::Stepper>(
+      std::move(particles), *forces_, mpm::StepperOptions{elastic_dt_, numerics_.dx, 0.5, damping});
+  stepper_->add_rule(std::make_unique<mpm::ClampRule>(container_));
+  plate_ = &dynamic_cast<mpm::PlateRule&>(
+      stepper_->add_rule(std::make_unique<mpm::PlateRule>(case_.friction.mu)));
+  stepper_->add_rigid_body(container_);
+}
+
+namespace {
+
+constexpr char kStateMagic[] = "snapjump-popper-state-1";
+
+template <typename T>
+void put(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <typename T>
+void get(std::istream& in, T& v) {
+  in.read(reinterpret_cast<char*>(&v), sizeof v);
+}
+void put_vector(std::ostream& out, const std::vector<double>& v) {
+  const std::uint64_t n = v.size();
+  put(out, n);
+  out.write(reinterpret_cast<const char*>(v.data()),
+            static_cast<std::streamsize>(n * sizeof(double)));
+}
+void get_vector(std::istream& in, std::vector<double>& v, std::size_t expected) {
+  std::uint64_t n = 0;
+  get(in, n);
+  if (!in || n != expected)
+    throw std::runtime_error("checkpoint does not match this popper's mesh");
+  v.resize(n);
+  in.read(reinterpret_cast<char*>(v.data()), static_cast<std::streamsize>(n * sizeof(double)));
+}
+
+}  // namespace
+
+void Popper::save_state(std::ostream& out) const {
+  if (!stepper_ || !gas_.valve_open()) throw std::logic_error("save_state() before release()");
+  out.write(kStateMagic, sizeof kStateMagic);
+  const auto& p = stepper_->particles();
+  put(out, stepper_->time());
+  put(out, stepper_->steps());
+  for (const auto* v : {&p.x.x, &p.x.y, &p.x.z, &p.v.x, &p.v.y, &p.v.z, &p.C}) put_vector(out, *v);
+  put(out, container_.z);
+  put(out, container_.vz);
+  put(out, container_.clamp_force);
+  put(out, gas_.delta_p());
+  put(out, gas_.J_n());
+  put(out, gas_.J_n_rate());
+  put(out, gas_.V_ref());
+  put(out, z_release_);
+  put(out, impulse_);
+  put(out, impulse_time_);
+  if (!out) throw std::runtime_error("writing the popper's state failed");
+}
+
+void Popper::load_state(std::istream& in) {
+  char magic[sizeof kStateMagic] = {};
+  in.read(magic, sizeof magic);
+  if (!in || std::string(magic) != kStateMagic)
+    throw std::runtime_error("not a snapjump checkpoint");
+  double time = 0.0;
+  long steps = 0;
+  get(in, time);
+  get(in, steps);
+  auto particles = mpm::particles_of(*body_);
+  const std::size_t n = particles.size();
+  for (auto* v : {&particles.x.x, &particles.x.y, &particles.x.z, &particles.v.x, &particles.v.y,
+                  &particles.v.z}) {
+    get_vector(in, *v, n);
+  }
+  get_vector(in, particles.C, 9 * n);
+  build_stepper(std::move(particles), 0.0);
+  stepper_->restore_clock(time, steps);
+  get(in, container_.z);
+  get(in, container_.vz);
+  get(in, container_.clamp_force);
+  double dp = 0, J_n = 0, J_n_rate = 0, V_ref = 0;
+  get(in, dp);
+  get(in, J_n);
+  get(in, J_n_rate);
+  get(in, V_ref);
+  gas_.restore(dp, true, J_n, J_n_rate, V_ref);
+  get(in, z_release_);
+  get(in, impulse_);
+  get(in, impulse_time_);
+  if (!in) throw std::runtime_error("the checkpoint is truncated");
 }
 
 void Popper::release() {

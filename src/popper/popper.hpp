@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
@@ -20,13 +21,14 @@ namespace snapjump::popper {
 
 // Numerical settings resolved from the case's [numerics] table.
 struct Numerics {
-  mesh::CapSpec cap;                // mesh of the shell
-  double dx = 0.0;                  // grid spacing [m]
-  double cfl = 0.4;                 // elastic time step factor
-  double probe_interval = 1e-4;     // [s] between samples of the time series
-  double snapshot_interval = 5e-3;  // [s] between VTU snapshots
-  double end_time = 0.8;            // [s] after release, unless the flight's apex comes first
-  double prep_damping = 0.0;        // [1/s] mass-proportional damping of phases 1-3
+  mesh::CapSpec cap;                  // mesh of the shell
+  double dx = 0.0;                    // grid spacing [m]
+  double cfl = 0.4;                   // elastic time step factor
+  double probe_interval = 1e-4;       // [s] between samples of the time series
+  double snapshot_interval = 5e-3;    // [s] between VTU snapshots
+  double checkpoint_interval = 0.02;  // [s] between checkpoints of a run
+  double end_time = 0.8;              // [s] after release, unless the flight's apex comes first
+  double prep_damping = 0.0;          // [1/s] mass-proportional damping of phases 1-3
 };
 Numerics resolve_numerics(const config::Case& c);
 
@@ -69,6 +71,12 @@ class Popper {
   // Current sample (F is the mean plate force since the previous sample).
   Sample sample();
 
+  // The state after release() (particles, container, gas, clock), to continue a stopped run:
+  // a popper built from the same case and numerics and given load_state() steps on exactly as
+  // the saved one would have. Binary, for the same build on the same machine.
+  void save_state(std::ostream& out) const;
+  void load_state(std::istream& in);
+
   [[nodiscard]] double time() const { return stepper_->time(); }
   [[nodiscard]] double dt() const { return stepper_->dt(); }
   [[nodiscard]] const fem::Body& body() const { return *body_; }
@@ -83,6 +91,7 @@ class Popper {
 
  private:
   void update_container_force(double damping);
+  void build_stepper(mpm::Particles particles, double damping);
   void advance_gas();
 
   config::Case case_;

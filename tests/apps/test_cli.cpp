@@ -234,3 +234,23 @@ TEST(Cli, RunRefusesAnIncompressibleMaterialBeforeWritingAnything) {
 
 }  // namespace
 }  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+TEST(Cli, ResumeNeedsARunFolder) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_not_a_run";
+  std::filesystem::create_directories(dir);
+  const auto r = run({"run", "--resume", dir.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("not a snapjump run folder"), std::string::npos) << r.err;
+}
+
+TEST(Cli, PauseAtNeedsATime) {
+  const auto r = run({"run", "--pause-at", "3 mm"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("--pause-at"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace snapjump::app

@@ -215,6 +215,30 @@ TEST(CaseFile, BadOverrideNamesTheFlag) {
   expect_error(kMinimal, {"--R", "shell.R", "is a mass"}, {{"shell.R", "30 g", "--R"}});
 }
 
+TEST(CaseFile, WrittenInSIAndReadBackTheSame) {
+  const std::vector<Override> o = {{"protocol.delta_p_j", "2.5 kPa", "--delta-p-j"}};
+  auto c = parse_case(kMinimal, "case.toml", o);
+  c.numerics.resolution = Resolution::Coarse;
+  c.numerics.end_time = 0.3;
+  const auto r = parse_case(to_toml(c), "written.toml");
+  EXPECT_EQ(r.title, c.title);
+  EXPECT_EQ(r.shell.R, c.shell.R);
+  EXPECT_EQ(r.shell.h, c.shell.h);
+  EXPECT_EQ(r.shell.phi, c.shell.phi);
+  EXPECT_EQ(r.material.E, c.material.E);
+  EXPECT_EQ(r.material.nu, c.material.nu);
+  EXPECT_EQ(r.material.rho, c.material.rho);
+  EXPECT_EQ(r.popper.net_weight, c.popper.net_weight);
+  EXPECT_EQ(r.popper.moving_mass, c.popper.moving_mass);
+  EXPECT_EQ(r.friction.mu, c.friction.mu);
+  EXPECT_EQ(r.gas.container_volume, c.gas.container_volume);
+  EXPECT_EQ(r.gas.alpha_n, c.gas.alpha_n);
+  EXPECT_EQ(r.gas.beta_n, c.gas.beta_n);
+  EXPECT_EQ(r.protocol.delta_p_j, c.protocol.delta_p_j);
+  EXPECT_EQ(r.numerics.resolution, Resolution::Coarse);
+  EXPECT_EQ(r.numerics.end_time, c.numerics.end_time);
+}
+
 TEST(CaseFile, MissingFile) {
   EXPECT_THROW((void)load_case_file("/nonexistent/case.toml"), CaseError);
 }
