@@ -330,9 +330,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       }
       if (!run_opts.resume.empty()) return run_simulation(config::Case{}, run_opts, out, err);
       auto c = run_case.load();
-      if (run_resolution == "coarse") c.numerics.resolution = config::Resolution::Coarse;
-      if (run_resolution == "default") c.numerics.resolution = config::Resolution::Default;
-      if (run_resolution == "fine") c.numerics.resolution = config::Resolution::Fine;
+      if (const auto r = config::parse_resolution(run_resolution)) c.numerics.resolution = *r;
       return run_simulation(c, run_opts, out, err);
     }
   } catch (const config::CaseError& e) {

@@ -193,14 +193,10 @@ class Reader {
       if (table_name == "numerics" && name == kResolutionKey) {
         const auto* s = node.as_string();
         const std::string v = s ? s->get() : "";
-        if (v == "coarse")
-          c.numerics.resolution = Resolution::Coarse;
-        else if (v == "default")
-          c.numerics.resolution = Resolution::Default;
-        else if (v == "fine")
-          c.numerics.resolution = Resolution::Fine;
-        else
+        const auto r = parse_resolution(v);
+        if (!r)
           fail(key.source(), "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
+        c.numerics.resolution = *r;
         continue;
       }
       if (table_name == "numerics" && name == kLayersKey) {
@@ -335,6 +331,13 @@ Case build(const Reader& r, Case c) {
 }
 
 }  // namespace
+
+std::optional<Resolution> parse_resolution(std::string_view text) {
+  for (const auto r : {Resolution::Coarse, Resolution::Default, Resolution::Fine}) {
+    if (text == to_string(r)) return r;
+  }
+  return std::nullopt;
+}
 
 std::string_view to_string(Resolution r) {
   switch (r) {

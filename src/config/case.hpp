@@ -56,6 +56,8 @@ struct Protocol {
 
 enum class Resolution { Coarse, Default, Fine };
 std::string_view to_string(Resolution r);
+// "coarse", "default", "fine"; nullopt for anything else.
+std::optional<Resolution> parse_resolution(std::string_view text);
 
 struct Numerics {
   Resolution resolution = Resolution::Default;
