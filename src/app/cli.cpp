@@ -328,7 +328,15 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
           throw config::CaseError(fmt::format("--pause-at: {}", e.what()));
         }
       }
-      if (!run_opts.resume.empty()) return run_simulation(config::Case{}, run_opts, out, err);
+      if (!run_opts.resume.empty()) {
+        if (!run_case.case_file.empty() || !run_case.values.empty() || !run_resolution.empty() ||
+            !run_opts.output.empty()) {
+          throw config::CaseError(
+              "--resume continues a run as it was set up (its case.toml, its folder): give no "
+              "case file, case values, --resolution or --output with it");
+        }
+        return run_simulation(config::Case{}, run_opts, out, err);
+      }
       auto c = run_case.load();
       if (const auto r = config::parse_resolution(run_resolution)) c.numerics.resolution = *r;
       return run_simulation(c, run_opts, out, err);

@@ -113,8 +113,10 @@ void Stepper::particle_to_grid() {
               g.px += mw * (vx + C[0] * dxa + C[1] * dyb + C[2] * dzc);
               g.py += mw * (vy + C[3] * dxa + C[4] * dyb + C[5] * dzc);
               g.pz += mw * (vz + C[6] * dxa + C[7] * dyb + C[8] * dzc);
-              grid_.tags[node] |= tag;
-              grid_.block_tags[node / kBlockNodes] |= tag;
+              if (tag != 0) {  // most particles carry none
+                grid_.tags[node] |= tag;
+                grid_.block_tags[node / kBlockNodes] |= tag;
+              }
             }
           }
         }

@@ -246,6 +246,14 @@ TEST(Cli, ResumeNeedsARunFolder) {
   EXPECT_NE(r.err.find("not a snapjump run folder"), std::string::npos) << r.err;
 }
 
+TEST(Cli, ResumeTakesNoNewCase) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_not_a_run";
+  std::filesystem::create_directories(dir);
+  const auto r = run({"run", "--resume", dir.string(), "--R", "20mm"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("give no case file"), std::string::npos) << r.err;
+}
+
 TEST(Cli, PauseAtNeedsATime) {
   const auto r = run({"run", "--pause-at", "3 mm"});
   EXPECT_EQ(r.code, kExitBadInput);
