@@ -172,7 +172,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   popper::Popper pop(c, numerics);
   const auto& body = pop.body();
-  const auto step = mpm::choose_time_step(pop.elastic_time_step(), numerics.dx, 2.0, 0.5);
+  const auto& step = pop.time_step();
   print_numerics(out, pop, step);
   summary["numerics"] = {{"elements", body.num_elements()},
                          {"particles", body.num_nodes()},

@@ -86,7 +86,9 @@ class Popper {
   [[nodiscard]] const config::Case& input() const { return case_; }
   [[nodiscard]] const Numerics& numerics() const { return numerics_; }
   [[nodiscard]] double delta_p_j() const { return delta_p_j_; }
-  [[nodiscard]] double elastic_time_step() const { return elastic_dt_; }
+  [[nodiscard]] double elastic_time_step() const { return time_step_.elastic; }
+  // The time step of the MPM phases: the elastic bound, or the grid's at 2 m/s if smaller.
+  [[nodiscard]] const mpm::TimeStep& time_step() const { return time_step_; }
   [[nodiscard]] double hole_area() const { return hole_area_; }
 
  private:
@@ -103,7 +105,7 @@ class Popper {
   mpm::RigidBody container_;
   mpm::PlateRule* plate_ = nullptr;
   double delta_p_j_ = 0.0;
-  double elastic_dt_ = 0.0;
+  mpm::TimeStep time_step_;
   double hole_area_ = 0.0;  // area of the container's hole: the inner rim circle [m^2]
   double shell_mass_ = 0.0;
   double z_release_ = 0.0;      // container z at t = 0
