@@ -94,6 +94,9 @@ TEST(ShellValidation, MembraneStateUnderSmallPressure) {
   A(1, 0) = A(0, 1);
   const Eigen::Vector2d wt = A.ldlt().solve(rhs);
   const double membrane = dp * R * R * (1 - nu) / (2 * kE * h);
+  const int apex = body.mesh().apex;
+  std::printf("membrane: raw apex displacement %.5e m = %.4f p R^2 (1 - nu) / (2 E h)\n",
+              x.z[apex] - X.z[apex], (x.z[apex] - X.z[apex]) / membrane);
   std::printf(
       "membrane: fitted w %.5e m, p R^2 (1 - nu) / (2 E h) = %.5e m (ratio %.4f); "
       "translation %.3e m = %.3f w (cos phi = %.3f)\n",
