@@ -21,9 +21,9 @@ namespace snapjump::popper {
 
 // Numerical settings resolved from the case's [numerics] table.
 struct Numerics {
-  mesh::CapSpec cap;                  // mesh of the shell
-  double dx = 0.0;                    // grid spacing [m]
-  double cfl = 0.4;                   // elastic time step factor
+  mesh::CapSpec cap;  // mesh of the shell
+  double dx = 0.0;    // grid spacing [m]
+  double cfl = 0.4;   // elastic time step factor (build/cfl_scan coarse: 0.6 stable, 0.7 not)
   double probe_interval = 1e-4;       // [s] between samples of the time series
   double snapshot_interval = 5e-3;    // [s] between VTU snapshots
   double checkpoint_interval = 0.02;  // [s] between checkpoints of a run
