@@ -234,8 +234,8 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
   CLI::App app{
       "snapjump: predicts and simulates how elastic shells snap and jump.\n"
-      "Start with `snapjump predict` (the paper's default popper) or `snapjump predict "
-      "examples/R30_h2.0.toml`."};
+      "Start with `snapjump predict` (the theory for the paper's default popper), then "
+      "`snapjump run --resolution coarse` (its simulated jump, about 8 minutes)."};
   app.name("snapjump");
   app.require_subcommand(1);
   app.set_version_flag("--version", "snapjump 0.1.0");
