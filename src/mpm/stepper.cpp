@@ -9,6 +9,32 @@
 
 namespace snapjump::mpm {
 
+namespace {
+
+// Calls visit(node, w, dx_a, dy_b, dz_c) for the 27 grid nodes of particle i's quadratic B-spline
+// stencil: the node index, the weight and the node's offset from the particle.
+template <typename Visit>
+inline void for_each_stencil_node(const SparseGrid& grid, const mesh::Points& x, std::size_t i,
+                                  double dx, Visit&& visit) {
+  const double inv_dx = 1.0 / dx;
+  const auto wx = bspline_weights(x.x[i] * inv_dx);
+  const auto wy = bspline_weights(x.y[i] * inv_dx);
+  const auto wz = bspline_weights(x.z[i] * inv_dx);
+  for (int a = 0; a < 3; ++a) {
+    const double dxa = (static_cast<double>(wx.base + a)) * dx - x.x[i];
+    for (int b = 0; b < 3; ++b) {
+      const double dyb = (static_cast<double>(wy.base + b)) * dx - x.y[i];
+      const double wab = wx.w[a] * wy.w[b];
+      for (int c = 0; c < 3; ++c) {
+        const double dzc = (static_cast<double>(wz.base + c)) * dx - x.z[i];
+        visit(grid.stencil_node(i, a, b, c), wab * wz.w[c], dxa, dyb, dzc);
+      }
+    }
+  }
+}
+
+}  // namespace
+
 TimeStep choose_time_step(double elastic_bound, double dx, double expected_speed, double cfl_grid) {
   TimeStep t;
   t.elastic = elastic_bound;
@@ -84,42 +110,30 @@ void Stepper::update_particle_velocities() {
 
 void Stepper::particle_to_grid() {
   grid_.rebuild(p_.x);
-  const double inv_dx = 1.0 / options_.dx, dx = options_.dx;
+  const double dx = options_.dx;
   for (int colour = 0; colour < 8; ++colour) {
     const auto& homes = grid_.homes_of_colour(colour);
     const int nh = static_cast<int>(homes.size());
 #pragma omp parallel for schedule(dynamic, 4)
     for (int k = 0; k < nh; ++k) {
       for (const int i : grid_.particles_of(homes[k])) {
-        const auto wx = bspline_weights(p_.x.x[i] * inv_dx);
-        const auto wy = bspline_weights(p_.x.y[i] * inv_dx);
-        const auto wz = bspline_weights(p_.x.z[i] * inv_dx);
         const double m = p_.mass[i];
         const double* C = &p_.C[9 * static_cast<std::size_t>(i)];
         const double vx = p_.v.x[i], vy = p_.v.y[i], vz = p_.v.z[i];
         const std::uint8_t tag = p_.tags[i];
-        for (int a = 0; a < 3; ++a) {
-          const double dxa = (static_cast<double>(wx.base + a)) * dx - p_.x.x[i];
-          for (int b = 0; b < 3; ++b) {
-            const double dyb = (static_cast<double>(wy.base + b)) * dx - p_.x.y[i];
-            const double wab = wx.w[a] * wy.w[b];
-            for (int c = 0; c < 3; ++c) {
-              const double dzc = (static_cast<double>(wz.base + c)) * dx - p_.x.z[i];
-              const double w = wab * wz.w[c];
-              const std::size_t node = grid_.stencil_node(static_cast<std::size_t>(i), a, b, c);
-              const double mw = m * w;
-              auto& g = grid_.nodes[node];
-              g.m += mw;
-              g.px += mw * (vx + C[0] * dxa + C[1] * dyb + C[2] * dzc);
-              g.py += mw * (vy + C[3] * dxa + C[4] * dyb + C[5] * dzc);
-              g.pz += mw * (vz + C[6] * dxa + C[7] * dyb + C[8] * dzc);
-              if (tag != 0) {  // most particles carry none
-                grid_.tags[node] |= tag;
-                grid_.block_tags[node / kBlockNodes] |= tag;
-              }
-            }
-          }
-        }
+        for_each_stencil_node(grid_, p_.x, static_cast<std::size_t>(i), dx,
+                              [&](std::size_t node, double w, double dxa, double dyb, double dzc) {
+                                const double mw = m * w;
+                                auto& g = grid_.nodes[node];
+                                g.m += mw;
+                                g.px += mw * (vx + C[0] * dxa + C[1] * dyb + C[2] * dzc);
+                                g.py += mw * (vy + C[3] * dxa + C[4] * dyb + C[5] * dzc);
+                                g.pz += mw * (vz + C[6] * dxa + C[7] * dyb + C[8] * dzc);
+                                if (tag != 0) {  // most particles carry none
+                                  grid_.tags[node] |= tag;
+                                  grid_.block_tags[node / kBlockNodes] |= tag;
+                                }
+                              });
       }
     }
   }
@@ -138,31 +152,19 @@ void Stepper::grid_to_particle() {
   std::atomic<long> bad{-1};
 #pragma omp parallel for schedule(static) reduction(max : vmax2)
   for (std::size_t i = 0; i < n; ++i) {
-    const auto wx = bspline_weights(p_.x.x[i] * inv_dx);
-    const auto wy = bspline_weights(p_.x.y[i] * inv_dx);
-    const auto wz = bspline_weights(p_.x.z[i] * inv_dx);
     double v[3] = {0, 0, 0};
     double B[9] = {};
-    for (int a = 0; a < 3; ++a) {
-      const double dxa = (static_cast<double>(wx.base + a)) * dx - p_.x.x[i];
-      for (int b = 0; b < 3; ++b) {
-        const double dyb = (static_cast<double>(wy.base + b)) * dx - p_.x.y[i];
-        const double wab = wx.w[a] * wy.w[b];
-        for (int c = 0; c < 3; ++c) {
-          const double dzc = (static_cast<double>(wz.base + c)) * dx - p_.x.z[i];
-          const double w = wab * wz.w[c];
-          const std::size_t node = grid_.stencil_node(i, a, b, c);
-          const auto& g = grid_.nodes[node];
-          const double inv_m = 1.0 / g.m;
-          const double gv[3] = {g.px * inv_m, g.py * inv_m, g.pz * inv_m};
-          const double d[3] = {dxa, dyb, dzc};
-          for (int r = 0; r < 3; ++r) {
-            v[r] += w * gv[r];
-            for (int s = 0; s < 3; ++s) B[3 * r + s] += w * gv[r] * d[s];
-          }
-        }
-      }
-    }
+    for_each_stencil_node(grid_, p_.x, i, dx,
+                          [&](std::size_t node, double w, double dxa, double dyb, double dzc) {
+                            const auto& g = grid_.nodes[node];
+                            const double inv_m = 1.0 / g.m;
+                            const double gv[3] = {g.px * inv_m, g.py * inv_m, g.pz * inv_m};
+                            const double d[3] = {dxa, dyb, dzc};
+                            for (int r = 0; r < 3; ++r) {
+                              v[r] += w * gv[r];
+                              for (int c = 0; c < 3; ++c) B[3 * r + c] += w * gv[r] * d[c];
+                            }
+                          });
     p_.v.x[i] = v[0];
     p_.v.y[i] = v[1];
     p_.v.z[i] = v[2];
