@@ -82,20 +82,15 @@ Popper::Popper(const config::Case& c, const Numerics& n)
   for (const auto& f : body_->mesh().inner_faces) {
     for (int a : f) inner[a] = 1;
   }
-  double rim_z = 0.0;
   for (int a : body_->mesh().clamped) {
     if (inner[a]) {
       rim_r += std::hypot(X.x[a], X.y[a]);
       ++count;
     }
-    if (outer[a]) {
-      outer_rim_.push_back(a);
-      rim_z += X.z[a];
-    }
+    if (outer[a]) outer_rim_.push_back(a);
   }
   hole_area_ = std::numbers::pi * std::pow(rim_r / count, 2);
-  rim_z /= static_cast<double>(outer_rim_.size());
-  depth_outer_ = rim_z - X.z[body_->mesh().apex];
+  depth_outer_ = outer_rim_z(X) - X.z[body_->mesh().apex];
 
   forces_ =
       std::make_unique<mpm::BodyForces>(*body_, kG, [this](double) { return gas_.delta_p(); });
@@ -103,6 +98,12 @@ Popper::Popper(const config::Case& c, const Numerics& n)
   // with a StepError from the stepper's own CFL check.
   time_step_ = mpm::choose_time_step(body_->stable_time_step(n.cfl), n.dx, 2.0, 0.5);
   container_.mass = c.popper.moving_mass - shell_mass_;
+}
+
+double Popper::outer_rim_z(const mesh::Points& x) const {
+  double z = 0.0;
+  for (int a : outer_rim_) z += x.z[a];
+  return z / static_cast<double>(outer_rim_.size());
 }
 
 void Popper::update_container_force(double damping) {
@@ -122,12 +123,7 @@ Preparation Popper::prepare(const Progress& progress) {
   const double pc =
       theory::zoelly_pressure(case_.material.E, case_.shell.h, case_.shell.R, case_.material.nu);
   const auto& mesh = body_->mesh();
-  const auto inverted = [&](const mesh::Points& x) {
-    double rim_z = 0.0;
-    for (int a : outer_rim_) rim_z += x.z[a];
-    rim_z /= static_cast<double>(outer_rim_.size());
-    return x.z[mesh.apex] > rim_z;
-  };
+  const auto inverted = [&](const mesh::Points& x) { return x.z[mesh.apex] > outer_rim_z(x); };
 
   // Phases 1 and 2, container held in the air: raise the suction past the buckling pressure
   // until the shell inverts, then bring it to delta_p_j and let it settle.
@@ -361,10 +357,7 @@ Sample Popper::sample() {
   s.w = p.x.z[apex];
   s.contact = !any ? measure::ContactState::None
                    : (s.w < band ? measure::ContactState::Disk : measure::ContactState::Ring);
-  double rim_z = 0.0;
-  for (int a : outer_rim_) rim_z += p.x.z[a];
-  rim_z /= static_cast<double>(outer_rim_.size());
-  s.e = depth_outer_ - (rim_z - p.x.z[apex]);
+  s.e = depth_outer_ - (outer_rim_z(p.x) - p.x.z[apex]);
   s.kinetic = stepper_->kinetic_energy() + 0.5 * container_.mass * container_.vz * container_.vz;
   s.elastic = body_->strain_energy(p.x);
   double pot = 0.0;

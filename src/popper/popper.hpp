@@ -93,6 +93,8 @@ class Popper {
 
  private:
   void update_container_force(double damping);
+  // Mean height of the outer rim circle (the rim plane of the outer surface) at positions x.
+  [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
   void build_stepper(mpm::Particles particles, double damping);
   void advance_gas();
 
