@@ -16,7 +16,7 @@ build: deps
 
 run: build
 	$(BUILD)/snapjump predict
-	$(BUILD)/snapjump run --resolution coarse
+	$(BUILD)/snapjump run
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900

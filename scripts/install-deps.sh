@@ -14,6 +14,8 @@ packages=(
   libgmsh-dev            # meshes (gmsh C++ API, .msh files)
   libgtest-dev           # tests
   libbenchmark-dev       # benchmarks (bench/)
+  openmpi-bin libopenmpi-dev  # sweeps spread over processes (mpirun)
+  gnuplot-nox            # figures (snapjump plot)
 )
 
 missing=()

@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "app/plot_command.hpp"
 #include "app/run.hpp"
+#include "app/sweep_command.hpp"
 #include "config/case.hpp"
 #include "contact/contact.hpp"
 #include "io/prediction_report.hpp"
@@ -235,7 +237,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App app{
       "snapjump: predicts and simulates how elastic shells snap and jump.\n"
       "Start with `snapjump predict` (the theory for the paper's default popper), then "
-      "`snapjump run --resolution coarse` (its simulated jump, about 8 minutes)."};
+      "`snapjump run` (its simulated jump, about 8 minutes on two cores)."};
   app.name("snapjump");
   app.require_subcommand(1);
   app.set_version_flag("--version", "snapjump 0.1.0");
@@ -308,6 +310,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
                    "continue a stopped or paused run in this folder from its last checkpoint")
       ->check(CLI::ExistingDirectory);
 
+  SweepCommand sweep_cmd(app);
+  PlotCommand plot_cmd(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -319,6 +324,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     if (predict_cmd->parsed()) return predict(predict_opts, format, out);
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
     if (analyze->parsed()) return analyze_cmd(analyze_opts, out);
+    if (sweep_cmd.parsed()) return sweep_cmd.run(out, err);
+    if (plot_cmd.parsed()) return plot_cmd.run(out, err);
     if (run_cmd->parsed()) {
       if (!pause_at.empty()) {
         const units::UnitParser parser;

@@ -21,16 +21,13 @@ constexpr double kG = config::kStandardGravity;
 Numerics resolve_numerics(const config::Case& c) {
   Numerics n;
   n.cap = mesh::cap_spec(c);
-  double dx_fraction = 0.02;  // grid spacing / R
+  double dx_fraction = 0.025;  // grid spacing / R
   switch (c.numerics.resolution) {
     case config::Resolution::Coarse:
-      dx_fraction = 0.025;
-      break;
     case config::Resolution::Default:
-      dx_fraction = 0.02;
       break;
     case config::Resolution::Fine:
-      dx_fraction = 0.015;
+      dx_fraction = 0.02;
       break;
   }
   // The grid acts on the plate within about one cell of it, so the cell must be well below the

@@ -1,0 +1,150 @@
+#include "app/sweep_command.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <thread>
+
+#include "app/cli.hpp"
+#include "sweep/executor.hpp"
+#include "sweep/mpi_work.hpp"
+#include "sweep/sweep.hpp"
+
+namespace snapjump::app {
+
+namespace fs = std::filesystem;
+
+SweepCommand::SweepCommand(CLI::App& app) {
+  cmd_ = app.add_subcommand(
+      "sweep",
+      "Run many poppers from a sweep file (a base case, values to vary): each run in its own "
+      "folder, several at a time or over MPI processes (mpirun -n K snapjump sweep ...); "
+      "finished runs are skipped when started again; one table (sweep.csv) at the end.");
+  cmd_->add_option("sweep", file_, "sweep file (TOML; see docs/sweeps.md)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd_->add_option("--output", output_,
+                   "the sweep's folder (default: the file's output key, or "
+                   "runs/sweep-<file name>); running again into it resumes the sweep");
+  cmd_->add_option("--jobs", jobs_,
+                   "runs at the same time in this process (default: the cores divided by "
+                   "--threads; 1 per process under MPI)")
+      ->check(CLI::PositiveNumber);
+  cmd_->add_option("--threads", threads_, "OpenMP threads per run (default 1)")
+      ->check(CLI::PositiveNumber);
+  cmd_->add_flag("--retry-failed", retry_failed_, "run again the runs that failed before");
+  cmd_->add_flag("--dry-run", dry_run_, "list the runs and their states; run nothing");
+  cmd_->add_flag("--table-only", table_only_, "only write sweep.csv from what has finished");
+}
+
+bool SweepCommand::parsed() const { return cmd_->parsed(); }
+
+int SweepCommand::run(std::ostream& out, std::ostream& err) const {
+  sweep::Spec spec;
+  try {
+    spec = sweep::load_spec(file_);
+  } catch (const sweep::SweepError& e) {
+    fmt::print(err, "error: {}\n", e.what());
+    return kExitBadInput;
+  }
+  if (!output_.empty()) spec.output = output_;
+  const fs::path table = spec.output / "sweep.csv";
+
+  if (dry_run_) {
+    fmt::print(out, "sweep {}: {} runs into {}\n", file_, spec.runs.size(), spec.output.string());
+    for (const auto& r : spec.runs) {
+      std::string what;
+      for (const auto& s : r.settings) what += fmt::format("  {} = {}", s.key, s.text);
+      fmt::print(out, "  {}  {:<11}{}\n", r.name,
+                 sweep::to_string(sweep::state_of(sweep::paths_of(spec, r))), what);
+    }
+    return kExitOk;
+  }
+
+  sweep::ExecOptions options;
+  options.executable = sweep::self_executable();
+  options.threads = threads_;
+  options.retry_failed = retry_failed_;
+
+  if (sweep::launched_by_mpi()) {
+    sweep::MpiWork mpi;
+    const bool root = mpi.rank() == 0;
+    bool ok = true;
+    if (root) {
+      try {
+        if (!table_only_) sweep::prepare_folder(spec);
+      } catch (const std::exception& e) {
+        fmt::print(err, "error: {}\n", e.what());
+        ok = false;
+      }
+    }
+    if (!mpi.all(ok)) return kExitBadInput;
+    std::vector<std::size_t> todo;
+    if (root && !table_only_) todo = sweep::runs_to_do(spec, retry_failed_);
+    mpi.broadcast(todo);
+    if (root) {
+      fmt::print(out, "sweep {}: {} runs, {} to do, over {} MPI processes; folder {}\n", file_,
+                 spec.runs.size(), todo.size(), mpi.size(), spec.output.string());
+    }
+    options.jobs = jobs_ > 0 ? jobs_ : 1;
+    options.label = fmt::format("rank {}: ", mpi.rank());
+    sweep::ExecReport report;
+    bool run_ok = true;
+    try {
+      report = sweep::execute(
+          spec, todo, [&] { return std::optional(mpi.next()); }, options, out,
+          [&] { mpi.progress(); });
+    } catch (const std::exception& e) {
+      fmt::print(err, "rank {}: error: {}\n", mpi.rank(), e.what());
+      run_ok = false;
+    }
+    const long failed = mpi.sum(report.failed);
+    run_ok = mpi.all(run_ok);
+    if (root) {
+      try {
+        const int with_result = sweep::write_table(spec, table);
+        fmt::print(out, "sweep done: {} of {} runs have a result, {} failed now; table {}\n",
+                   with_result, spec.runs.size(), failed, table.string());
+      } catch (const std::exception& e) {
+        fmt::print(err, "error: {}\n", e.what());
+        run_ok = false;
+      }
+    }
+    return failed > 0 || !mpi.all(run_ok) ? kExitFailure : kExitOk;
+  }
+
+  try {
+    if (!table_only_) {
+      sweep::prepare_folder(spec);
+      const auto todo = sweep::runs_to_do(spec, retry_failed_);
+      const int cores = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+      options.jobs = jobs_ > 0 ? jobs_ : std::max(1, cores / threads_);
+      fmt::print(out,
+                 "sweep {}: {} runs, {} to do ({} already finished or failed), {} at a time "
+                 "with {} thread(s) each; folder {}\n",
+                 file_, spec.runs.size(), todo.size(), spec.runs.size() - todo.size(), options.jobs,
+                 options.threads, spec.output.string());
+      std::size_t counter = 0;
+      const auto report = sweep::execute(
+          spec, todo, [&] { return std::optional(counter++); }, options, out);
+      const int with_result = sweep::write_table(spec, table);
+      fmt::print(out, "sweep done: {} of {} runs have a result, {} failed now; table {}\n",
+                 with_result, spec.runs.size(), report.failed, table.string());
+      return report.failed > 0 ? kExitFailure : kExitOk;
+    }
+    const int with_result = sweep::write_table(spec, table);
+    fmt::print(out, "{} of {} runs have a result; table {}\n", with_result, spec.runs.size(),
+               table.string());
+    return kExitOk;
+  } catch (const sweep::SweepError& e) {
+    fmt::print(err, "error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    fmt::print(err, "error: {}\n", e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace snapjump::app

@@ -1,0 +1,76 @@
+// Figures through gnuplot: a figure is a self-contained gnuplot script (FIGURE.gp, its data in
+// datablocks) kept beside the image it draws (FIGURE.png or FIGURE.svg), so that a user can edit
+// the script and run `gnuplot FIGURE.gp` in that folder to redraw it.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace snapjump::plot {
+
+// Bad input for a figure: a missing file or column, an empty table. what() names the file and
+// the column. The command line exits with status 2.
+class PlotInputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// gnuplot is missing or failed. what() names the script and quotes gnuplot's message. The
+// command line exits with status 1.
+class PlotError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class Format { Png, Svg };
+std::string_view extension(Format f);  // "png", "svg"
+// "png" / "svg" (case-insensitive); nothing otherwise.
+std::optional<Format> parse_format(std::string_view text);
+
+// Where and how to draw one figure.
+struct FigureOptions {
+  Format format = Format::Png;
+  std::filesystem::path output;     // the image; empty: the figure's default place
+  std::string gnuplot = "gnuplot";  // the program to run
+};
+
+// What a figure command produced.
+struct FigureResult {
+  std::filesystem::path figure;    // the image
+  std::filesystem::path script;    // the gnuplot script beside it
+  std::vector<std::string> notes;  // what a user should know (data left out, fallbacks)
+};
+
+// The image and script paths for a figure: options.output if given (the script takes its stem
+// and the extension .gp), else `default_path` with the format's extension.
+FigureResult figure_paths(const FigureOptions& options, const std::filesystem::path& default_path);
+
+// --- Script text ---
+
+// A gnuplot single-quoted string: 'it''s'.
+std::string quote(std::string_view text);
+
+// The terminal lines for a figure of width x height pixels (pngcairo or svg, enhanced text,
+// UTF-8, white background) and `set output` with the image's file name (relative to the script's
+// folder, where render() runs gnuplot).
+std::string terminal(Format format, int width, int height, const std::filesystem::path& image,
+                     int font_size = 14);
+
+// A datablock `$name << EOD ... EOD` with one line per row, values in full precision; `columns`
+// becomes a comment line naming them. Rows with a non-finite value are written as a blank line
+// (gnuplot breaks lines there).
+std::string datablock(std::string_view name, std::string_view columns,
+                      const std::vector<std::vector<double>>& rows);
+
+// A number for a script, in full precision.
+std::string number(double v);
+
+// Writes the script and runs gnuplot on it in the script's folder. Throws PlotError naming the
+// script and quoting gnuplot's output when gnuplot is missing, fails or leaves no image.
+void render(const FigureResult& paths, const std::string& script, const std::string& gnuplot);
+
+}  // namespace snapjump::plot

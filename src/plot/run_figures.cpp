@@ -1,0 +1,419 @@
+// Figures of one run: the time series (Fig. 2(a)) and cross-sections of the shell (Fig. 1(c)).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <system_error>
+
+#include "measure/time_series.hpp"
+#include "plot/figures.hpp"
+#include "plot/snapshots.hpp"
+#include "plot/style.hpp"
+
+namespace snapjump::plot {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+void require_run_folder(const fs::path& run_dir) {
+  std::error_code ec;
+  if (!fs::exists(run_dir, ec)) {
+    throw PlotInputError(fmt::format("{}: no such run folder", run_dir.string()));
+  }
+  if (!fs::is_directory(run_dir, ec)) {
+    throw PlotInputError(fmt::format(
+        "{}: not a folder; give the run folder that `snapjump run` wrote", run_dir.string()));
+  }
+}
+
+// summary.json of a run, or null when there is none or it cannot be read (noted).
+json read_summary(const fs::path& path, std::vector<std::string>& notes) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    notes.push_back(fmt::format("{} not found: no onset or launch marks", path.string()));
+    return nullptr;
+  }
+  std::ifstream in(path);
+  auto doc = json::parse(in, nullptr, false);
+  if (doc.is_discarded() || !doc.is_object()) {
+    notes.push_back(fmt::format("{} is not valid JSON: no onset or launch marks", path.string()));
+    return nullptr;
+  }
+  return doc;
+}
+
+// summary["measured"]["quantities"][key]["value"], when it is a number.
+std::optional<double> measured(const json& summary, const char* key) {
+  if (!summary.is_object()) return std::nullopt;
+  const auto m = summary.find("measured");
+  if (m == summary.end() || !m->is_object()) return std::nullopt;
+  const auto q = m->find("quantities");
+  if (q == m->end() || !q->is_object()) return std::nullopt;
+  const auto k = q->find(key);
+  if (k == q->end() || !k->is_object()) return std::nullopt;
+  const auto v = k->find("value");
+  if (v == k->end() || !v->is_number()) return std::nullopt;
+  const double d = v->get<double>();
+  return std::isfinite(d) ? std::optional<double>(d) : std::nullopt;
+}
+
+// summary["theory"]["quantities"][key] {lower, upper}, when both are numbers.
+std::optional<std::pair<double, double>> theory_range(const json& summary, const char* key) {
+  if (!summary.is_object()) return std::nullopt;
+  const auto t = summary.find("theory");
+  if (t == summary.end() || !t->is_object()) return std::nullopt;
+  const auto q = t->find("quantities");
+  if (q == t->end() || !q->is_object()) return std::nullopt;
+  const auto k = q->find(key);
+  if (k == q->end() || !k->is_object()) return std::nullopt;
+  const auto lo = k->find("lower");
+  const auto hi = k->find("upper");
+  if (lo == k->end() || hi == k->end() || !lo->is_number() || !hi->is_number()) return std::nullopt;
+  const double a = lo->get<double>(), b = hi->get<double>();
+  if (!std::isfinite(a) || !std::isfinite(b)) return std::nullopt;
+  return std::make_pair(std::min(a, b), std::max(a, b));
+}
+
+std::string summary_title(const json& summary) {
+  if (!summary.is_object()) return {};
+  const auto c = summary.find("case");
+  if (c == summary.end() || !c->is_object()) return {};
+  const auto t = c->find("title");
+  if (t == c->end() || !t->is_string()) return {};
+  return t->get<std::string>();
+}
+
+// Time intervals [t0, t1) of one contact state, runs of equal rows.
+struct Interval {
+  double t0 = 0.0, t1 = 0.0;
+  measure::ContactState state = measure::ContactState::None;
+};
+
+std::vector<Interval> contact_intervals(const measure::TimeSeries& s) {
+  std::vector<Interval> v;
+  const auto t = s.time();
+  const auto c = s.contact();
+  if (c.empty()) return v;
+  std::size_t start = 0;
+  for (std::size_t i = 1; i <= c.size(); ++i) {
+    if (i == c.size() || c[i] != c[start]) {
+      const double t1 = i < c.size() ? t[i] : t[c.size() - 1];
+      if (c[start] != measure::ContactState::None && t1 > t[start]) {
+        v.push_back({t[start], t1, c[start]});
+      }
+      start = i;
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
+FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options) {
+  require_run_folder(run_dir);
+  const auto csv = run_dir / "series.csv";
+  std::error_code ec;
+  if (!fs::is_regular_file(csv, ec)) {
+    throw PlotInputError(
+        fmt::format("{}: no such file (the time series that `snapjump run` writes)", csv.string()));
+  }
+  auto result = figure_paths(options, run_dir / "figures" / "series");
+  auto& notes = result.notes;
+  std::optional<measure::TimeSeries> read;
+  try {
+    read.emplace(measure::TimeSeries::read_csv_file(csv));
+  } catch (const measure::SeriesError& e) {
+    throw PlotInputError(e.what());
+  }
+  const auto& s = *read;
+  {
+    std::string missing;
+    for (const char* name : {"z", "r", "w", "F", "delta_p"}) {
+      if (s.has(name)) continue;
+      missing += fmt::format("{}'{}'", missing.empty() ? "" : ", ", name);
+    }
+    if (!missing.empty()) {
+      throw PlotInputError(
+          fmt::format("{}: no column {} (the series figure needs t, z, r, w, F "
+                      "and delta_p)",
+                      csv.string(), missing));
+    }
+  }
+  if (s.empty()) throw PlotInputError(fmt::format("{}: the series has no rows", csv.string()));
+
+  const auto summary = read_summary(run_dir / "summary.json", notes);
+  const auto t = s.time();
+  const auto z = s.column("z");
+  const auto r = s.column("r");
+  const auto w = s.column("w");
+  const auto F = s.column("F");
+  const auto dp = s.column("delta_p");
+  double dp_max = 0.0;
+  for (const double v : dp) dp_max = std::max(dp_max, std::abs(v));
+  const bool kpa = dp_max >= 2000.0;
+  const double dp_scale = kpa ? 1e-3 : 1.0;
+
+  // Very long records are thinned for the script (every k-th row; the extremes of F are kept).
+  const std::size_t limit = 40000;
+  const std::size_t stride = s.size() > limit ? (s.size() + limit - 1) / limit : 1;
+  std::size_t i_fmax = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (F[i] > F[i_fmax]) i_fmax = i;
+  }
+  std::vector<std::vector<double>> rows;
+  rows.reserve(s.size() / stride + 2);
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if (i % stride != 0 && i != i_fmax && i + 1 != s.size()) continue;
+    rows.push_back({t[i] * 1e3, z[i] * 1e3, r[i] * 1e3, w[i] * 1e3, F[i], dp[i] * dp_scale});
+  }
+  if (stride > 1) {
+    notes.push_back(fmt::format("{} rows: every {}th is drawn", s.size(), stride));
+  }
+  const double t0 = t.front() * 1e3;
+  const double t1 = std::max(t.back() * 1e3, t0 + 1e-6);
+
+  std::string gp;
+  gp += fmt::format(
+      "# Fig. 2(a) of the paper: the time series of one run, from {}.\n"
+      "# Written by `snapjump plot series`; edit and redraw with `gnuplot {}` in this folder.\n"
+      "# Units: t in ms, z r w in mm, F in N, delta_p in {}.\n",
+      csv.string(), result.script.filename().string(), kpa ? "kPa" : "Pa");
+  gp += terminal(options.format, 1200, 1000, result.figure, 14);
+  gp += datablock(
+      "series",
+      fmt::format("t [ms]  z [mm]  r [mm]  w [mm]  F [N]  delta_p [{}]", kpa ? "kPa" : "Pa"), rows);
+
+  // Marks shared by every panel: contact states shaded, onset and launch as vertical lines.
+  const auto intervals = contact_intervals(s);
+  bool ring = false, disk = false;
+  if (intervals.size() <= 400) {
+    int k = 1;
+    for (const auto& iv : intervals) {
+      const bool is_disk = iv.state == measure::ContactState::Disk;
+      (is_disk ? disk : ring) = true;
+      gp += fmt::format(
+          "set object {} rect from first {}, graph 0 to first {}, graph 1 behind fc rgb '{}' "
+          "fs solid 1.0 noborder\n",
+          k++, number(iv.t0 * 1e3), number(iv.t1 * 1e3), is_disk ? "#d6e6f5" : "#fdebd3");
+    }
+  } else {
+    notes.push_back(
+        fmt::format("the contact state changes {} times: not shaded", intervals.size()));
+  }
+  const auto t_onset = measured(summary, "t_onset");
+  const auto t_launch = measured(summary, "t_launch");
+  std::string labels;
+  int arrow = 1;
+  for (const auto& [tm, name] : {std::pair{t_onset, "onset"}, std::pair{t_launch, "launch"}}) {
+    if (!tm) continue;
+    gp += fmt::format(
+        "set arrow {} from first {}, graph 0 to first {}, graph 1 nohead dt 2 lw 1.5 "
+        "lc rgb '#404040' front\n",
+        arrow, number(*tm * 1e3), number(*tm * 1e3));
+    labels += fmt::format(
+        "set label {} '{} ({:.1f} ms)' at first {}, graph 1 {} offset {},0.7 front\n", arrow, name,
+        *tm * 1e3, number(*tm * 1e3), arrow == 1 ? "right" : "left", arrow == 1 ? -0.5 : 0.5);
+    ++arrow;
+  }
+  if (summary.is_object() && !t_onset && !t_launch) {
+    notes.push_back("summary.json has no measured onset or launch: no marks");
+  }
+
+  const auto title = summary_title(summary);
+  gp += fmt::format("set multiplot title {} noenhanced\n",
+                    quote(title.empty() ? run_dir.filename().string() : title));
+  gp += fmt::format("set xrange [{}:{}]\n", number(t0), number(t1));
+  gp +=
+      "set offsets 0, 0, graph 0.06, graph 0.06\nset key Left reverse opaque box lc rgb "
+      "'#c0c0c0'\n";
+  gp += "set grid xtics ytics lc rgb '#e0e0e0'\nset mxtics\n";
+  const double top = 0.94, bottom = 0.07, left = 0.1, right = 0.97;
+
+  // (i) container height
+  gp += style::stacked_margins(0, 4, top, bottom, left, right);
+  gp += "set format x ''\nunset xlabel\n";
+  gp += labels;
+  gp += "set ylabel 'container height z [mm]'\nset key top left\n";
+  std::string plot = fmt::format(
+      "plot $series using 1:2 with lines lw 2 lc rgb '{}' title "
+      "'simulation z'",
+      style::kBlue);
+  if (const auto H = theory_range(summary, "H")) {
+    plot += fmt::format(", '+' using 1:({}):({}) with filledcurves {} title 'theory H bounds'",
+                        number(H->first * 1e3), number(H->second * 1e3), style::kBand);
+  }
+  if (const auto H = measured(summary, "H")) {
+    const auto top_z = std::max_element(z.begin(), z.end()) - z.begin();
+    gp += fmt::format("$H << EOD\n{} {}\nEOD\n", number(t[static_cast<std::size_t>(top_z)] * 1e3),
+                      number(*H * 1e3));
+    plot +=
+        fmt::format(", $H using 1:2 {} title 'H (measured)'", style::points(style::kBlue, 8, 1.8));
+  }
+  gp += plot + "\n";
+  if (!labels.empty()) gp += "unset label\n";
+
+  // (ii) contact radius and apex gap
+  gp += style::stacked_margins(1, 4, top, bottom, left, right);
+  gp += "set ylabel 'r, w [mm]'\nset key bottom left\n";
+  plot = fmt::format(
+      "plot $series using 1:3 with lines lw 2 lc rgb '{}' title 'contact radius r', $series "
+      "using 1:4 with lines lw 2 lc rgb '{}' title 'apex gap w'",
+      style::kRed, style::kGreen);
+  if (ring)
+    plot += ", keyentry with boxes fc rgb '#fdebd3' fs solid 1.0 noborder title 'ring contact'";
+  if (disk)
+    plot += ", keyentry with boxes fc rgb '#d6e6f5' fs solid 1.0 noborder title 'disk contact'";
+  gp += plot + "\n";
+
+  // (iii) plate force
+  gp += style::stacked_margins(2, 4, top, bottom, left, right);
+  gp += "set ylabel 'plate force F [N]'\nset key top left\n";
+  plot = fmt::format("plot $series using 1:5 with lines lw 2 lc rgb '{}' title 'simulation F'",
+                     style::kPurple);
+  if (const auto Fs = theory_range(summary, "F_star")) {
+    plot += fmt::format(", '+' using 1:({}):({}) with filledcurves {} title 'theory F* bounds'",
+                        number(Fs->first), number(Fs->second), style::kBand);
+  }
+  const auto F_star = measured(summary, "F_star");
+  const auto t_F_star = measured(summary, "t_F_star");
+  if (F_star && t_F_star) {
+    gp += fmt::format("$Fstar << EOD\n{} {}\nEOD\n", number(*t_F_star * 1e3), number(*F_star));
+    plot += fmt::format(", $Fstar using 1:2 {} title 'F* (measured)'",
+                        style::points(style::kPurple, 6, 2.0));
+  }
+  gp += plot + "\n";
+
+  // (iv) pressure difference
+  gp += style::stacked_margins(3, 4, top, bottom, left, right);
+  gp += "set format x '%g'\nset xlabel 't after release [ms]'\n";
+  gp += fmt::format("set ylabel 'δp [{}]'\nset key bottom left\n", kpa ? "kPa" : "Pa");
+  gp += fmt::format(
+      "plot $series using 1:6 with lines lw 2 lc rgb '{}' title 'pressure difference δp "
+      "(outside - inside)'\n",
+      style::kOrange);
+  gp += "unset multiplot\n";
+
+  render(result, gp, options.gnuplot);
+  return result;
+}
+
+FigureResult plot_sections(const fs::path& run_dir, std::span<const double> times,
+                           const FigureOptions& options) {
+  require_run_folder(run_dir);
+  if (times.empty()) throw PlotInputError("--times: give at least one time, e.g. 0,0.2,0.45");
+  const auto pvd = run_dir / "run.pvd";
+  const auto frames = read_pvd(pvd);
+  auto result = figure_paths(options, run_dir / "figures" / "sections");
+  auto& notes = result.notes;
+
+  struct Section {
+    double requested = 0.0;
+    const Frame* frame = nullptr;
+    std::vector<std::vector<double>> rows;  // x, z in mm
+    bool projected = false;
+  };
+  std::vector<Section> sections;
+  for (const double t : times) {
+    const Frame& f = nearest_frame(frames, t);
+    const bool seen = std::any_of(sections.begin(), sections.end(),
+                                  [&](const Section& s) { return s.frame == &f; });
+    if (seen) {
+      notes.push_back(
+          fmt::format("t = {:.6g} s: nearest snapshot {} (t = {:.6g} s) is already drawn", t,
+                      f.file.string(), f.time));
+      continue;
+    }
+    if (std::abs(f.time - t) > 1e-4) {  // more than 0.1 ms away
+      notes.push_back(fmt::format("t = {:.6g} s: nearest snapshot {} at t = {:.6g} s", t,
+                                  f.file.string(), f.time));
+    }
+    sections.push_back({t, &f, {}, false});
+  }
+
+  double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, zmin = xmin, zmax = -xmin;
+  for (auto& sec : sections) {
+    const auto file = sec.frame->file.is_absolute() ? sec.frame->file : run_dir / sec.frame->file;
+    const auto points = read_vtu_points(file);
+    if (points.empty()) throw PlotInputError(fmt::format("{}: has no points", file.string()));
+    double x0 = points[0][0], x1 = x0, y0 = points[0][1], y1 = y0;
+    for (const auto& p : points) {
+      x0 = std::min(x0, p[0]);
+      x1 = std::max(x1, p[0]);
+      y0 = std::min(y0, p[1]);
+      y1 = std::max(y1, p[1]);
+    }
+    // A slab around the plane through the middle of the shell, parallel to x-z.
+    const double yc = 0.5 * (y0 + y1);
+    const double half = 0.015 * std::max(x1 - x0, y1 - y0);
+    for (const auto& p : points) {
+      if (std::abs(p[1] - yc) <= half) sec.rows.push_back({p[0] * 1e3, p[2] * 1e3});
+    }
+    const std::size_t needed = std::max<std::size_t>(20, points.size() / 500);
+    if (sec.rows.size() < needed) {
+      // Too few points near the plane: project every point on (signed distance to the axis, z).
+      sec.projected = true;
+      sec.rows.clear();
+      const double xc = 0.5 * (x0 + x1);
+      for (const auto& p : points) {
+        const double dx = p[0] - xc, dy = p[1] - yc;
+        const double rho = std::copysign(std::hypot(dx, dy), dx) + xc;
+        sec.rows.push_back({rho * 1e3, p[2] * 1e3});
+      }
+      notes.push_back(
+          fmt::format("{}: few points near the plane y = {:.3g} mm; drawn projected on "
+                      "(signed distance to the axis, z)",
+                      file.string(), yc * 1e3));
+    }
+    for (const auto& row : sec.rows) {
+      xmin = std::min(xmin, row[0]);
+      xmax = std::max(xmax, row[0]);
+      zmin = std::min(zmin, row[1]);
+      zmax = std::max(zmax, row[1]);
+    }
+  }
+
+  std::string gp;
+  gp += fmt::format(
+      "# Fig. 1(c) of the paper: cross-sections of the shell, from {}.\n"
+      "# Written by `snapjump plot sections`; edit and redraw with `gnuplot {}` in this folder.\n"
+      "# Each block holds the mesh points (x, z in mm) of one snapshot that lie within a thin "
+      "slab\n# around the plane y = y_mid (1.5 % of the shell's width on each side).\n",
+      pvd.string(), result.script.filename().string());
+  // Equal scales on both axes: the canvas height follows the shape (plot about 850 px wide).
+  const double aspect = (std::max(zmax, 0.0) - std::min(zmin, 0.0)) / std::max(xmax - xmin, 1e-9);
+  const int height = static_cast<int>(std::clamp(850.0 * 1.15 * aspect + 220.0, 450.0, 1000.0));
+  gp += terminal(options.format, 1200, height, result.figure, 15);
+  for (std::size_t k = 0; k < sections.size(); ++k) {
+    gp += fmt::format("# snapshot {} at t = {} s{}\n", sections[k].frame->file.string(),
+                      sections[k].frame->time,
+                      sections[k].projected ? " (projected on signed distance to the axis)" : "");
+    gp += datablock(fmt::format("section{}", k), "x [mm]  z [mm]", sections[k].rows);
+  }
+  const auto xr = style::padded(xmin, xmax, false, 0.06);
+  gp += fmt::format("$plate << EOD\n{} 0\n{} 0\nEOD\n", number(xr.lo), number(xr.hi));
+  gp += "set size ratio -1\n";
+  gp += fmt::format("set xrange [{}:{}]\n", number(xr.lo), number(xr.hi));
+  gp += "set offsets 0, 0, graph 0.08, graph 0.04\n";
+  gp += "set xlabel 'x [mm]'\nset ylabel 'height above the plate z [mm]'\n";
+  gp += "set key outside right top Left reverse box lc rgb '#c0c0c0'\n";
+  gp += "set grid lc rgb '#e0e0e0'\n";
+  gp += fmt::format(
+      "set title {} noenhanced\n",
+      quote(fmt::format("cross-sections of the shell, {}", run_dir.filename().string())));
+  std::string plot = "plot $plate using 1:2 with lines lw 4 lc rgb 'black' title 'plate z = 0'";
+  for (std::size_t k = 0; k < sections.size(); ++k) {
+    plot += fmt::format(
+        ", $section{} using 1:2 with points pt 7 ps 0.5 lc rgb '{}' title "
+        "'t = {:.1f} ms'",
+        k, style::kPalette[k % std::size(style::kPalette)], sections[k].frame->time * 1e3);
+  }
+  gp += plot + "\n";
+  render(result, gp, options.gnuplot);
+  return result;
+}
+
+}  // namespace snapjump::plot

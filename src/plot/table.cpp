@@ -1,0 +1,227 @@
+#include "plot/table.hpp"
+
+#include <fmt/format.h>
+
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <initializer_list>
+#include <iterator>
+#include <sstream>
+#include <system_error>
+
+#include "plot/gnuplot.hpp"
+
+namespace snapjump::plot {
+namespace {
+
+std::string trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return std::string(s.substr(first, last - first + 1));
+}
+
+struct Record {
+  std::vector<std::string> cells;
+  std::size_t line = 0;  // where the record starts
+};
+
+// Splits CSV text into records of cells. Quoted fields may hold commas, newlines and doubled
+// quotes. A record whose first character is '#' is a comment; blank records are skipped.
+std::vector<Record> parse_records(const std::string& text, std::string_view source) {
+  std::vector<Record> records;
+  std::size_t line = 1;
+  std::size_t i = 0;
+  const std::size_t n = text.size();
+  while (i < n) {
+    Record rec;
+    rec.line = line;
+    if (text[i] == '#') {  // comment line
+      while (i < n && text[i] != '\n') ++i;
+      if (i < n) ++i;
+      ++line;
+      continue;
+    }
+    std::string cell;
+    bool quoted_cell = false;
+    bool done = false;
+    while (!done) {
+      if (i >= n) {
+        rec.cells.push_back(quoted_cell ? cell : trim(cell));
+        break;
+      }
+      const char c = text[i];
+      if (c == '"' && trim(cell).empty() && !quoted_cell) {
+        // A quoted field: up to the closing quote, "" is a quote.
+        cell.clear();
+        quoted_cell = true;
+        const std::size_t start_line = line;
+        ++i;
+        while (true) {
+          if (i >= n) {
+            throw PlotInputError(
+                fmt::format("{}:{}: a quoted field is never closed", source, start_line));
+          }
+          if (text[i] == '"') {
+            if (i + 1 < n && text[i + 1] == '"') {
+              cell += '"';
+              i += 2;
+              continue;
+            }
+            ++i;
+            break;
+          }
+          if (text[i] == '\n') ++line;
+          cell += text[i++];
+        }
+        continue;
+      }
+      if (c == ',') {
+        rec.cells.push_back(quoted_cell ? cell : trim(cell));
+        cell.clear();
+        quoted_cell = false;
+        ++i;
+        continue;
+      }
+      if (c == '\n') {
+        rec.cells.push_back(quoted_cell ? cell : trim(cell));
+        ++i;
+        ++line;
+        done = true;
+        continue;
+      }
+      if (quoted_cell) {
+        if (c != ' ' && c != '\t' && c != '\r') {
+          throw PlotInputError(
+              fmt::format("{}:{}: text after the closing quote of a field", source, line));
+        }
+        ++i;
+        continue;
+      }
+      cell += c;
+      ++i;
+    }
+    const bool blank = rec.cells.size() == 1 && rec.cells[0].empty();
+    if (!blank) records.push_back(std::move(rec));
+  }
+  return records;
+}
+
+}  // namespace
+
+Table Table::read_csv_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) {
+    throw PlotInputError(fmt::format("{}: no such file", path.string()));
+  }
+  if (std::filesystem::is_directory(path, ec)) {
+    throw PlotInputError(fmt::format("{}: is a folder, not a CSV file", path.string()));
+  }
+  std::ifstream in(path);
+  if (!in) throw PlotInputError(fmt::format("{}: cannot be read", path.string()));
+  return read_csv(in, path.string());
+}
+
+Table Table::read_csv(std::istream& in, std::string_view source) {
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  auto records = parse_records(text, source);
+  Table t;
+  t.source_ = std::string(source);
+  if (records.empty())
+    throw PlotInputError(fmt::format("{}: empty table (no header line)", source));
+  const auto& header = records.front();
+  for (std::size_t k = 0; k < header.cells.size(); ++k) {
+    const auto& h = header.cells[k];
+    std::string name = h;
+    std::string unit;
+    if (const auto open = h.find('['); open != std::string::npos) {
+      const auto close = h.find(']', open);
+      name = trim(std::string_view(h).substr(0, open));
+      unit = trim(std::string_view(h).substr(
+          open + 1, (close == std::string::npos ? h.size() : close) - open - 1));
+    }
+    if (name.empty()) {
+      throw PlotInputError(
+          fmt::format("{}:{}: header column {} has no name", source, header.line, k + 1));
+    }
+    t.names_.push_back(std::move(name));
+    t.units_.push_back(std::move(unit));
+  }
+  for (std::size_t r = 1; r < records.size(); ++r) {
+    auto& rec = records[r];
+    if (rec.cells.size() > t.names_.size()) {
+      throw PlotInputError(fmt::format("{}:{}: the row has {} cells, the header {} columns", source,
+                                       rec.line, rec.cells.size(), t.names_.size()));
+    }
+    rec.cells.resize(t.names_.size());
+    t.cells_.push_back(std::move(rec.cells));
+    t.lines_.push_back(rec.line);
+  }
+  return t;
+}
+
+std::optional<std::size_t> Table::index(std::string_view name) const {
+  // The last column of that name: a sweep's varied keys come before its fixed columns.
+  for (std::size_t i = names_.size(); i-- > 0;) {
+    if (names_[i] == name) return i;
+  }
+  return std::nullopt;
+}
+
+std::size_t Table::column(std::string_view name) const {
+  if (const auto i = index(name)) return *i;
+  throw PlotInputError(fmt::format("{}: no column '{}' in the header", source_, name));
+}
+
+const std::string& Table::unit(std::string_view name) const { return units_[column(name)]; }
+
+void Table::require(std::initializer_list<std::string_view> names) const {
+  std::string missing;
+  std::size_t count = 0;
+  for (const auto name : names) {
+    if (has(name)) continue;
+    if (!missing.empty()) missing += ", ";
+    missing += fmt::format("'{}'", name);
+    ++count;
+  }
+  if (count > 0) {
+    throw PlotInputError(
+        fmt::format("{}: no column{} {} in the header", source_, count > 1 ? "s" : "", missing));
+  }
+}
+
+const std::string& Table::text(std::size_t row, std::string_view name) const {
+  return cells_.at(row)[column(name)];
+}
+
+std::optional<double> Table::number(std::size_t row, std::string_view name) const {
+  const auto& cell = text(row, name);
+  if (cell.empty()) return std::nullopt;
+  std::string_view s = cell;
+  if (s.front() == '+') s.remove_prefix(1);
+  const std::string lower = [&] {
+    std::string l(s);
+    for (auto& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return l;
+  }();
+  if (lower == "nan" || lower == "-nan" || lower == "inf" || lower == "-inf") return std::nullopt;
+  double v = 0.0;
+  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || ptr != s.data() + s.size()) {
+    throw PlotInputError(fmt::format("{}:{}: column '{}': '{}' is not a number", source_,
+                                     lines_.at(row), name, cell));
+  }
+  if (!std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+std::vector<std::optional<double>> Table::numbers(std::string_view name) const {
+  std::vector<std::optional<double>> v;
+  v.reserve(rows());
+  for (std::size_t r = 0; r < rows(); ++r) v.push_back(number(r, name));
+  return v;
+}
+
+}  // namespace snapjump::plot

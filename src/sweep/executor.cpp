@@ -1,0 +1,202 @@
+#include "sweep/executor.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <thread>
+
+extern char** environ;  // NOLINT: POSIX
+
+namespace snapjump::sweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The last lines of a log that say what went wrong.
+std::string tail_of(const fs::path& log, std::size_t lines) {
+  std::ifstream f(log);
+  std::vector<std::string> all;
+  for (std::string l; std::getline(f, l);) {
+    if (!l.empty()) all.push_back(l);
+  }
+  std::string out;
+  for (std::size_t i = all.size() > lines ? all.size() - lines : 0; i < all.size(); ++i) {
+    out += all[i];
+    out += '\n';
+  }
+  return out;
+}
+
+// Starts `snapjump run ...` for one run with its output in the run's log. Returns the pid.
+pid_t spawn_run(const ExecOptions& o, const std::vector<std::string>& args, const fs::path& log) {
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e != nullptr; ++e) {
+    if (std::strncmp(*e, "OMP_NUM_THREADS=", 16) != 0) env_text.emplace_back(*e);
+  }
+  env_text.push_back(fmt::format("OMP_NUM_THREADS={}", o.threads));
+  std::vector<char*> envp;
+  for (auto& s : env_text) envp.push_back(s.data());
+  envp.push_back(nullptr);
+
+  std::vector<std::string> argv_text = {o.executable.string()};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& s : argv_text) argv.push_back(s.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  const std::string log_path = log.string();
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_path.c_str(),
+                                   O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    throw std::runtime_error(
+        fmt::format("cannot start {}: {}", o.executable.string(), std::strerror(rc)));
+  }
+  return pid;
+}
+
+std::string duration(double s) {
+  if (s < 90) return fmt::format("{:.0f} s", s);
+  if (s < 5400) return fmt::format("{:.1f} min", s / 60);
+  return fmt::format("{:.1f} h", s / 3600);
+}
+
+}  // namespace
+
+fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
+
+std::vector<std::size_t> runs_to_do(const Spec& spec, bool retry_failed) {
+  std::vector<std::size_t> todo;
+  for (std::size_t i = 0; i < spec.runs.size(); ++i) {
+    const auto s = state_of(paths_of(spec, spec.runs[i]));
+    if (s == RunState::Done || (s == RunState::Failed && !retry_failed)) continue;
+    todo.push_back(i);
+  }
+  return todo;
+}
+
+ExecReport execute(const Spec& spec, const std::vector<std::size_t>& todo, const WorkSource& next,
+                   const ExecOptions& o, std::ostream& log, const std::function<void()>& idle) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  const auto seconds = [](clock::time_point a) {
+    return std::chrono::duration<double>(clock::now() - a).count();
+  };
+  struct Running {
+    std::size_t run;
+    clock::time_point start;
+  };
+  std::map<pid_t, Running> running;
+  ExecReport report;
+  double busy = 0.0;  // run-seconds finished here
+  bool exhausted = false;
+
+  const auto start_one = [&]() -> bool {
+    const auto k = next();
+    if (!k) return false;
+    if (*k >= todo.size()) return false;
+    const std::size_t i = todo[*k];
+    const auto& run = spec.runs[i];
+    const auto p = paths_of(spec, run);
+    auto state = state_of(p);
+    std::vector<std::string> args;
+    if (state == RunState::Failed || state == RunState::Interrupted) {
+      // Start again from nothing: the run's folder is the sweep's own.
+      fs::remove_all(p.dir);
+      fs::remove(p.failed);
+      state = RunState::New;
+    }
+    if (state == RunState::Done) return true;  // finished meanwhile (another process)
+    if (state == RunState::Resumable) {
+      args = {"run", "--resume", p.dir.string(), "--quiet"};
+    } else {
+      args = {"run", p.case_file.string(), "--output", p.dir.string(), "--quiet"};
+    }
+    {
+      std::ofstream l(p.log, std::ios::app);
+      l << fmt::format("== {} {}\n", state == RunState::Resumable ? "resuming" : "starting",
+                       run.name);
+    }
+    const pid_t pid = spawn_run(o, args, p.log);
+    running[pid] = {i, clock::now()};
+    std::string what;
+    for (const auto& s : run.settings) what += fmt::format(" {}={}", s.key, s.text);
+    log << fmt::format("{}{} {}{}\n", o.label, run.name,
+                       state == RunState::Resumable ? "resumed" : "started", what)
+        << std::flush;
+    return true;
+  };
+
+  while (true) {
+    while (!exhausted && static_cast<int>(running.size()) < o.jobs) {
+      if (!start_one()) exhausted = true;
+    }
+    if (running.empty()) break;
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, WNOHANG);
+    if (pid == 0) {
+      if (idle) idle();
+      std::this_thread::sleep_for(std::chrono::milliseconds(200));
+      continue;
+    }
+    if (pid < 0) {
+      if (errno == EINTR) continue;
+      throw std::runtime_error(fmt::format("waiting for runs: {}", std::strerror(errno)));
+    }
+    const auto it = running.find(pid);
+    if (it == running.end()) continue;
+    const auto [i, start] = it->second;
+    running.erase(it);
+    const double took = seconds(start);
+    busy += took;
+    const auto& run = spec.runs[i];
+    const auto p = paths_of(spec, run);
+    const auto state = state_of(p);
+    std::string how;
+    if (WIFEXITED(status)) {
+      how = fmt::format("exit status {}", WEXITSTATUS(status));
+    } else if (WIFSIGNALED(status)) {
+      how = fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
+    }
+    if (state == RunState::Done) {
+      ++report.finished;
+      log << fmt::format("{}{} finished in {}\n", o.label, run.name, duration(took));
+    } else {
+      ++report.failed;
+      const std::string why =
+          fmt::format("{}; log {}:\n{}", how, p.log.string(), tail_of(p.log, 4));
+      std::ofstream f(p.failed);
+      f << why;
+      log << fmt::format("{}{} FAILED after {} ({}); see {}\n", o.label, run.name, duration(took),
+                         how, p.log.string());
+    }
+    const int done_here = report.finished + report.failed;
+    std::string eta;
+    if (o.label.empty()) {  // one process sees the whole sweep: estimate what is left
+      const double mean = busy / done_here;
+      const auto left = static_cast<double>(todo.size() - static_cast<std::size_t>(done_here));
+      eta = fmt::format(" of {}, about {} to go", todo.size(),
+                        duration(mean * left / std::max(1, o.jobs)));
+    }
+    log << fmt::format("{}{} run(s) done{}, {} running, {} elapsed\n", o.label, done_here, eta,
+                       running.size(), duration(seconds(t0)))
+        << std::flush;
+  }
+  return report;
+}
+
+}  // namespace snapjump::sweep

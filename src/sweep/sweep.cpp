@@ -1,0 +1,524 @@
+#include "sweep/sweep.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <toml++/toml.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "theory/prefactors.hpp"
+#include "theory/scaling.hpp"
+
+namespace snapjump::sweep {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::string_view kResolutionKey = "numerics.resolution";
+
+std::string at(const fs::path& file, const toml::source_region& r) {
+  return fmt::format("{}:{}", file.string(), r.begin.line);
+}
+
+const config::KeySpec* key_spec(std::string_view key) {
+  for (const auto& k : config::quantity_keys()) {
+    if (fmt::format("{}.{}", k.table, k.name) == key) return &k;
+  }
+  return nullptr;
+}
+
+std::string known_keys() {
+  std::string s;
+  for (const auto& k : config::quantity_keys()) s += fmt::format(" {}.{}", k.table, k.name);
+  s += ' ';
+  s += kResolutionKey;
+  return s;
+}
+
+void check_key(const fs::path& file, const toml::source_region& r, const std::string& key) {
+  if (key == kResolutionKey || key_spec(key) != nullptr) return;
+  throw SweepError(fmt::format("{}: unknown case key '{}'; a sweep may set or vary:{}", at(file, r),
+                               key, known_keys()));
+}
+
+// A scalar TOML value as case text: strings as written, numbers as bare (SI) numbers.
+std::optional<std::string> scalar_text(const toml::node& n) {
+  if (const auto* s = n.as_string()) return s->get();
+  if (const auto* i = n.as_integer()) return fmt::format("{}", i->get());
+  if (const auto* f = n.as_floating_point()) return fmt::format("{}", f->get());
+  return std::nullopt;
+}
+
+// Visits the leaves of a table with dotted keys ("shell.h"), stopping at arrays and at tables
+// that describe a range (they have a "from" key).
+template <class Visit>
+void for_each_leaf(const toml::table& t, const std::string& prefix, Visit&& visit) {
+  for (auto&& [k, node] : t) {
+    const std::string key =
+        prefix.empty() ? std::string(k.str()) : fmt::format("{}.{}", prefix, k.str());
+    if (const auto* sub = node.as_table(); sub != nullptr && !sub->contains("from")) {
+      for_each_leaf(*sub, key, visit);
+    } else {
+      visit(key, node, k.source());
+    }
+  }
+}
+
+// The values of one [vary] or [zip] entry: a list, or a range {from, to, count, scale}.
+std::vector<Setting> values_of(const fs::path& file, const std::string& key, const toml::node& n,
+                               const toml::source_region& where, const units::UnitParser& parser) {
+  const std::string origin = at(file, where);
+  std::vector<Setting> out;
+  if (const auto* arr = n.as_array()) {
+    for (const auto& item : *arr) {
+      const auto text = scalar_text(item);
+      if (!text) {
+        throw SweepError(
+            fmt::format("{}: {} lists values as strings with units or numbers", origin, key));
+      }
+      out.push_back({key, *text, origin});
+    }
+  } else if (const auto* range = n.as_table()) {
+    const auto* spec = key_spec(key);
+    if (spec == nullptr) {
+      throw SweepError(fmt::format("{}: {} cannot take a range (it is not a number)", origin, key));
+    }
+    const auto from = range->get("from"), to = range->get("to");
+    const auto count = (*range)["count"].value<std::int64_t>();
+    const std::string scale = (*range)["scale"].value_or(std::string("linear"));
+    for (auto&& [rk, rv] : *range) {
+      const auto name = rk.str();
+      if (name != "from" && name != "to" && name != "count" && name != "scale") {
+        throw SweepError(fmt::format("{}: {}: a range has from, to, count and scale, not '{}'",
+                                     origin, key, name));
+      }
+    }
+    if (from == nullptr || to == nullptr || !count || *count < 2) {
+      throw SweepError(fmt::format(
+          "{}: {}: a range needs from, to and count >= 2, e.g. {{ from = \"{}\", to = ..., "
+          "count = 5 }}",
+          origin, key, spec->example));
+    }
+    if (scale != "linear" && scale != "log") {
+      throw SweepError(fmt::format("{}: {}: scale must be \"linear\" or \"log\"", origin, key));
+    }
+    double a = 0, b = 0;
+    try {
+      a = parser.parse(scalar_text(*from).value_or(""), spec->dimension);
+      b = parser.parse(scalar_text(*to).value_or(""), spec->dimension);
+    } catch (const std::exception& e) {
+      throw SweepError(fmt::format("{}: {}: {}", origin, key, e.what()));
+    }
+    if (scale == "log" && !(a > 0 && b > 0)) {
+      throw SweepError(fmt::format("{}: {}: a log range needs positive ends", origin, key));
+    }
+    for (std::int64_t i = 0; i < *count; ++i) {
+      const double s = static_cast<double>(i) / static_cast<double>(*count - 1);
+      const double v = scale == "log" ? a * std::pow(b / a, s) : a + s * (b - a);
+      out.push_back({key, fmt::format("{}", v), origin});  // a bare number is SI
+    }
+  } else {
+    throw SweepError(fmt::format(
+        "{}: {} must be a list of values or a range {{ from = ..., to = ..., count = ... }}",
+        origin, key));
+  }
+  if (out.empty()) throw SweepError(fmt::format("{}: {} has no values", origin, key));
+  return out;
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char ch : s) {
+    if (ch == '"') q += '"';
+    q += ch == '\n' ? ' ' : ch;
+  }
+  q += '"';
+  return q;
+}
+
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); }
+
+std::optional<nlohmann::json> read_json(const fs::path& p) {
+  std::ifstream f(p);
+  if (!f) return std::nullopt;
+  try {
+    return nlohmann::json::parse(f);
+  } catch (const nlohmann::json::exception&) {
+    return std::nullopt;
+  }
+}
+
+std::string read_text(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitParser& parser) {
+  std::vector<config::Override> overrides;
+  std::optional<std::string> resolution;
+  const auto add = [&](const Setting& s) {
+    if (s.key == kResolutionKey) {
+      if (!config::parse_resolution(s.text)) {
+        throw config::CaseError(fmt::format("{}: {} must be \"coarse\", \"default\" or \"fine\"",
+                                            s.origin, kResolutionKey));
+      }
+      resolution = s.text;
+    } else {
+      overrides.push_back({s.key, s.text, s.origin});
+    }
+  };
+  for (const auto& s : spec.fixed) add(s);
+  for (const auto& s : run.settings) add(s);
+  auto c = spec.base ? config::load_case_file(*spec.base, overrides, &parser)
+                     : config::default_case(overrides, &parser);
+  if (resolution) c.numerics.resolution = *config::parse_resolution(*resolution);
+  if (!spec.title.empty()) {
+    std::string vals;
+    for (const auto& s : run.settings) vals += fmt::format(", {} = {}", s.key, s.text);
+    c.title = fmt::format("{} {}{}", spec.title, run.name, vals);
+  }
+  return c;
+}
+
+}  // namespace
+
+Spec parse_spec(std::string_view toml_text, const fs::path& file) {
+  toml::table doc;
+  try {
+    doc = toml::parse(toml_text, file.string());
+  } catch (const toml::parse_error& e) {
+    throw SweepError(
+        fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
+  }
+  const units::UnitParser parser;
+  Spec spec;
+  spec.file = file;
+  const fs::path folder = file.parent_path();
+  std::vector<std::vector<Setting>> vary;  // per key: its values
+  std::vector<std::vector<Setting>> zip;
+  for (auto&& [k, node] : doc) {
+    const std::string name(k.str());
+    const std::string origin = at(file, k.source());
+    if (name == "title") {
+      spec.title = node.value_or(std::string());
+    } else if (name == "base") {
+      const auto* s = node.as_string();
+      if (s == nullptr) throw SweepError(fmt::format("{}: base must be a path (a string)", origin));
+      spec.base = fs::absolute(folder / s->get());
+      if (!fs::is_regular_file(*spec.base)) {
+        throw SweepError(
+            fmt::format("{}: base case file {} does not exist", origin, spec.base->string()));
+      }
+    } else if (name == "output") {
+      const auto* s = node.as_string();
+      if (s == nullptr) throw SweepError(fmt::format("{}: output must be a path", origin));
+      spec.output = folder / s->get();
+    } else if (name == "set" || name == "vary" || name == "zip") {
+      const auto* t = node.as_table();
+      if (t == nullptr) throw SweepError(fmt::format("{}: [{}] must be a table", origin, name));
+      for_each_leaf(
+          *t, "",
+          [&](const std::string& key, const toml::node& n, const toml::source_region& where) {
+            check_key(file, where, key);
+            for (const auto& v : spec.varied_keys) {
+              if (v == key) {
+                throw SweepError(fmt::format("{}: {} is varied twice", at(file, where), key));
+              }
+            }
+            if (name == "set") {
+              const auto text = scalar_text(n);
+              if (!text) {
+                throw SweepError(
+                    fmt::format("{}: [set] {} takes one value (a string with its unit or a number)",
+                                at(file, where), key));
+              }
+              spec.fixed.push_back({key, *text, at(file, where)});
+            } else {
+              auto values = values_of(file, key, n, where, parser);
+              (name == "vary" ? vary : zip).push_back(std::move(values));
+            }
+          });
+    } else {
+      throw SweepError(fmt::format(
+          "{}: unknown key '{}'; a sweep file has title, base, output, [set], [vary] and [zip]",
+          origin, name));
+    }
+  }
+  if (vary.empty() && zip.empty()) {
+    throw SweepError(
+        fmt::format("{}: nothing to vary: add a [vary] or [zip] table", file.string()));
+  }
+  for (const auto& z : zip) {
+    if (z.size() != zip.front().size()) {
+      throw SweepError(fmt::format("{}: [zip] lists differ in length ({} has {}, {} has {})",
+                                   file.string(), zip.front().front().key, zip.front().size(),
+                                   z.front().key, z.size()));
+    }
+  }
+  for (const auto& z : zip) spec.varied_keys.push_back(z.front().key);
+  for (const auto& v : vary) spec.varied_keys.push_back(v.front().key);
+  for (const auto& f : spec.fixed) {
+    for (const auto& v : spec.varied_keys) {
+      if (v == f.key) throw SweepError(fmt::format("{}: {} is both set and varied", f.origin, v));
+    }
+  }
+
+  // The product: zip position outermost, then the [vary] keys, the last one fastest.
+  const std::size_t nzip = zip.empty() ? 1 : zip.front().size();
+  std::size_t nvary = 1;
+  for (const auto& v : vary) nvary *= v.size();
+  if (nzip * nvary > 100000) {
+    throw SweepError(fmt::format("{}: {} runs is more than a sweep should hold (100000)",
+                                 file.string(), nzip * nvary));
+  }
+  for (std::size_t z = 0; z < nzip; ++z) {
+    for (std::size_t j = 0; j < nvary; ++j) {
+      RunPlan r;
+      r.name = fmt::format("run-{:04d}", spec.runs.size());
+      for (const auto& list : zip) r.settings.push_back(list[z]);
+      std::size_t rest = j;
+      std::vector<Setting> vs(vary.size());
+      for (std::size_t k = vary.size(); k-- > 0;) {
+        vs[k] = vary[k][rest % vary[k].size()];
+        rest /= vary[k].size();
+      }
+      for (auto& s : vs) r.settings.push_back(std::move(s));
+      spec.runs.push_back(std::move(r));
+    }
+  }
+  if (spec.output.empty())
+    spec.output = fs::path("runs") / fmt::format("sweep-{}", file.stem().string());
+
+  // Every run's case, checked now rather than when it is its turn.
+  for (const auto& r : spec.runs) {
+    try {
+      (void)build_case(spec, r, parser);
+    } catch (const config::CaseError& e) {
+      throw SweepError(fmt::format("{}: {}", r.name, e.what()));
+    }
+  }
+  return spec;
+}
+
+Spec load_spec(const fs::path& file) {
+  std::ifstream f(file);
+  if (!f) throw SweepError(fmt::format("cannot read the sweep file {}", file.string()));
+  std::stringstream s;
+  s << f.rdbuf();
+  return parse_spec(s.str(), file);
+}
+
+config::Case make_case(const Spec& spec, const RunPlan& run) {
+  const units::UnitParser parser;
+  return build_case(spec, run, parser);
+}
+
+RunPaths paths_of(const Spec& spec, const RunPlan& run) {
+  return {spec.output / "cases" / fmt::format("{}.toml", run.name), spec.output / "runs" / run.name,
+          spec.output / "logs" / fmt::format("{}.log", run.name),
+          spec.output / "logs" / fmt::format("{}.failed", run.name)};
+}
+
+std::string_view to_string(RunState s) {
+  switch (s) {
+    case RunState::New:
+      return "new";
+    case RunState::Done:
+      return "done";
+    case RunState::Failed:
+      return "failed";
+    case RunState::Resumable:
+      return "resumable";
+    case RunState::Interrupted:
+      return "interrupted";
+  }
+  return "?";
+}
+
+RunState state_of(const RunPaths& p) {
+  if (const auto summary = read_json(p.dir / "summary.json")) {
+    const std::string status = summary->value("status", std::string());
+    if (status.rfind("completed", 0) == 0 || status == "snapped back before release" ||
+        status == "did not invert") {
+      return RunState::Done;
+    }
+    if (status.rfind("failed", 0) == 0) return RunState::Failed;
+  }
+  if (fs::exists(p.failed)) return RunState::Failed;
+  if (!fs::exists(p.dir)) return RunState::New;
+  return fs::exists(p.dir / "checkpoint.bin") ? RunState::Resumable : RunState::Interrupted;
+}
+
+void prepare_folder(const Spec& spec) {
+  std::string plan = "run";
+  for (const auto& k : spec.varied_keys) plan += fmt::format(",{}", k);
+  plan += "\n";
+  for (const auto& r : spec.runs) {
+    plan += r.name;
+    for (const auto& s : r.settings) plan += fmt::format(",{}", csv_field(s.text));
+    plan += "\n";
+  }
+  const fs::path plan_file = spec.output / "plan.csv";
+  if (fs::exists(plan_file)) {
+    if (read_text(plan_file) != plan) {
+      throw SweepError(fmt::format(
+          "{} holds a different sweep (its plan.csv differs); give another output folder or "
+          "remove that one",
+          spec.output.string()));
+    }
+  } else if (fs::exists(spec.output) && !fs::is_empty(spec.output)) {
+    throw SweepError(
+        fmt::format("{} exists and is not a sweep folder (no plan.csv)", spec.output.string()));
+  }
+  fs::create_directories(spec.output / "cases");
+  fs::create_directories(spec.output / "runs");
+  fs::create_directories(spec.output / "logs");
+  const auto write_atomic = [](const fs::path& p, const std::string& text) {
+    const fs::path tmp = fmt::format("{}.tmp", p.string());
+    {
+      std::ofstream f(tmp);
+      f << text;
+      if (!f) throw SweepError(fmt::format("cannot write {}", tmp.string()));
+    }
+    fs::rename(tmp, p);
+  };
+  const units::UnitParser parser;
+  for (const auto& r : spec.runs) {
+    const auto p = paths_of(spec, r);
+    if (!fs::exists(p.case_file))
+      write_atomic(p.case_file, config::to_toml(build_case(spec, r, parser)));
+  }
+  if (!fs::exists(plan_file)) write_atomic(plan_file, plan);
+}
+
+int write_table(const Spec& spec, const fs::path& csv) {
+  const units::UnitParser parser;
+  const auto& constants = theory::contact_constants();
+  std::vector<std::string> header = {"run", "status", "outcome", "predicted_outcome"};
+  std::vector<const config::KeySpec*> varied;
+  for (const auto& k : spec.varied_keys) {
+    const auto* ks = key_spec(k);
+    varied.push_back(ks);
+    const std::string unit = ks ? std::string(units::si_unit(ks->dimension)) : "";
+    header.push_back(ks ? fmt::format("{} [{}]", k, unit.empty() ? "1" : unit) : k);
+  }
+  const std::vector<std::string> fixed_cols = {"R [m]",
+                                               "h [m]",
+                                               "phi [rad]",
+                                               "E [Pa]",
+                                               "nu [1]",
+                                               "rho [kg/m^3]",
+                                               "mu [1]",
+                                               "net_weight [N]",
+                                               "moving_mass [kg]",
+                                               "delta_p_j [Pa]",
+                                               "p_c [Pa]",
+                                               "r_c [m]",
+                                               "e_c [m]",
+                                               "F_c [N]",
+                                               "t_c [s]",
+                                               "h_over_R [1]",
+                                               "Eh2_over_mg [1]",
+                                               "Eh4_over_mgR2 [1]",
+                                               "delta_p_j_over_p_c [1]"};
+  struct Measured {
+    const char* key;
+    const char* unit;
+  };
+  const Measured measured[] = {{"r_star", "m"},  {"e_star", "m"},  {"F_star", "N"},
+                               {"t_star", "s"},  {"H_l", "m"},     {"H_s", "m"},
+                               {"H", "m"},       {"alpha_r", "1"}, {"alpha_e", "1"},
+                               {"alpha_F", "1"}, {"alpha_t", "1"}};
+  for (const auto& c : fixed_cols) header.push_back(c);
+  for (const auto& m : measured) header.push_back(fmt::format("{} [{}]", m.key, m.unit));
+  for (const auto& m : measured) {
+    if (std::string_view(m.key) == "alpha_r") break;
+    header.push_back(fmt::format("{}_lo [{}]", m.key, m.unit));
+    header.push_back(fmt::format("{}_hi [{}]", m.key, m.unit));
+  }
+  for (const char* a : {"alpha_r", "alpha_e", "alpha_F", "alpha_t"}) {
+    header.push_back(fmt::format("{}_lo [1]", a));
+    header.push_back(fmt::format("{}_hi [1]", a));
+  }
+  header.push_back("wall_time [s]");
+  header.push_back("error");
+
+  std::string out;
+  out += fmt::format("{}", fmt::join(header, ","));
+  out += "\n";
+  int with_result = 0;
+  for (const auto& r : spec.runs) {
+    const auto p = paths_of(spec, r);
+    const auto c = build_case(spec, r, parser);
+    const auto pred = theory::predict(c, constants);
+    const auto summary = read_json(p.dir / "summary.json");
+    const auto state = state_of(p);
+    std::string status = summary ? summary->value("status", std::string()) : std::string();
+    std::string error;
+    if (state == RunState::Failed && fs::exists(p.failed)) error = read_text(p.failed);
+    if (status.rfind("failed", 0) == 0) error = status;
+    if (status.empty()) status = std::string(to_string(state));
+    if (status.rfind("failed", 0) == 0) status = "failed";
+    const nlohmann::json* m = nullptr;
+    if (summary && summary->contains("measured")) m = &(*summary)["measured"];
+    std::string outcome;
+    if (m && (*m)["outcome"].is_string()) outcome = (*m)["outcome"].get<std::string>();
+    if (!outcome.empty()) ++with_result;
+    std::vector<std::string> row = {r.name, status, outcome, pred.outcome.text()};
+    for (std::size_t k = 0; k < r.settings.size(); ++k) {
+      const auto& s = r.settings[k];
+      row.push_back(varied[k] ? num(parser.parse(s.text, varied[k]->dimension)) : s.text);
+    }
+    const double mg = pred.net_weight;
+    const double E = c.material.E, h = c.shell.h, R = c.shell.R;
+    for (double v :
+         {R, h, c.shell.phi, E, c.material.nu, c.material.rho, c.friction.mu, mg, pred.moving_mass,
+          pred.delta_p_j, pred.zoelly_pc, pred.r_c, pred.e_c, pred.F_c, pred.t_c, h / R,
+          E * h * h / mg, E * std::pow(h, 4) / (mg * R * R), pred.delta_p_j / pred.zoelly_pc}) {
+      row.push_back(num(v));
+    }
+    for (const auto& q : measured) {
+      double v = NAN;
+      if (m && m->contains("quantities") && (*m)["quantities"].contains(q.key)) {
+        const auto& j = (*m)["quantities"][q.key]["value"];
+        if (j.is_number()) v = j.get<double>();
+      }
+      row.push_back(num(v));
+    }
+    for (const auto* range :
+         {&pred.r_star, &pred.e_star, &pred.F_star, &pred.t_star, &pred.H_l, &pred.H_s, &pred.H,
+          &pred.alpha.alpha_r, &pred.alpha.alpha_e, &pred.alpha.alpha_F, &pred.alpha.alpha_t}) {
+      row.push_back(num(range->lo));
+      row.push_back(num(range->hi));
+    }
+    double wall = NAN;
+    if (summary && (*summary)["wall_time"].is_number())
+      wall = (*summary)["wall_time"].get<double>();
+    row.push_back(num(wall));
+    while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
+    row.push_back(error);
+    for (std::size_t i = 0; i < row.size(); ++i) {
+      if (i > 0) out += ',';
+      out += csv_field(row[i]);
+    }
+    out += "\n";
+  }
+  const fs::path tmp = fmt::format("{}.tmp", csv.string());
+  {
+    std::ofstream f(tmp);
+    f << out;
+    if (!f) throw SweepError(fmt::format("cannot write {}", tmp.string()));
+  }
+  fs::rename(tmp, csv);
+  return with_result;
+}
+
+}  // namespace snapjump::sweep
