@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -56,17 +57,35 @@ std::optional<std::string> scalar_text(const toml::node& n) {
 
 // Visits the leaves of a table with dotted keys ("shell.h"), stopping at arrays and at tables
 // that describe a range (they have a "from" key).
-template <class Visit>
-void for_each_leaf(const toml::table& t, const std::string& prefix, Visit&& visit) {
+struct Leaf {
+  std::string key;
+  const toml::node* node;
+  toml::source_region where;
+};
+
+void collect_leaves(const toml::table& t, const std::string& prefix, std::vector<Leaf>& out) {
   for (auto&& [k, node] : t) {
     const std::string key =
         prefix.empty() ? std::string(k.str()) : fmt::format("{}.{}", prefix, k.str());
     if (const auto* sub = node.as_table(); sub != nullptr && !sub->contains("from")) {
-      for_each_leaf(*sub, key, visit);
+      collect_leaves(*sub, key, out);
     } else {
-      visit(key, node, k.source());
+      out.push_back({key, &node, k.source()});
     }
   }
+}
+
+// Visits the leaves of a table in the order they are written in the file (toml++ keeps tables
+// sorted by key), with dotted keys ("shell.h"); arrays and range tables (with "from") are leaves.
+template <class Visit>
+void for_each_leaf(const toml::table& t, Visit&& visit) {
+  std::vector<Leaf> leaves;
+  collect_leaves(t, "", leaves);
+  std::stable_sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) {
+    return std::pair(a.where.begin.line, a.where.begin.column) <
+           std::pair(b.where.begin.line, b.where.begin.column);
+  });
+  for (const auto& l : leaves) visit(l.key, *l.node, l.where);
 }
 
 // The values of one [vary] or [zip] entry: a list, or a range {from, to, count, scale}.
@@ -225,8 +244,7 @@ Spec parse_spec(std::string_view toml_text, const fs::path& file) {
       const auto* t = node.as_table();
       if (t == nullptr) throw SweepError(fmt::format("{}: [{}] must be a table", origin, name));
       for_each_leaf(
-          *t, "",
-          [&](const std::string& key, const toml::node& n, const toml::source_region& where) {
+          *t, [&](const std::string& key, const toml::node& n, const toml::source_region& where) {
             check_key(file, where, key);
             for (const auto& v : spec.varied_keys) {
               if (v == key) {
