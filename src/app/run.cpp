@@ -1,4 +1,5 @@
 #include "app/run.hpp"
+#include "plot/figures.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
@@ -366,6 +367,28 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   for (const auto& w : analysis.warnings) fmt::print(out, "  note        {}\n", w);
   fmt::print(out, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
              dir.string(), pvd.size());
+  // The figures a reader looks at first: the Fig. 2(a) panels and cross-sections of the shell
+  // before, at and after the transition. A missing gnuplot costs the figures, not the run.
+  try {
+    const auto series_fig = plot::plot_series(dir, {});
+    std::vector<double> times = {0.0};
+    const double last = pop.time();
+    if (analysis.t_onset) {
+      for (double t : {*analysis.t_onset - 0.1, *analysis.t_onset - 0.02, *analysis.t_onset}) {
+        if (t > times.back() + 1e-3) times.push_back(t);
+      }
+      if (analysis.t_launch && *analysis.t_launch > times.back() + 1e-3)
+        times.push_back(*analysis.t_launch);
+    } else {
+      for (double f : {0.25, 0.5, 0.75}) times.push_back(f * last);
+    }
+    if (last > times.back() + 1e-3) times.push_back(last);
+    const auto sections_fig = plot::plot_sections(dir, times, {});
+    fmt::print(out, "  figures     {}, {}\n", series_fig.figure.string(),
+               sections_fig.figure.string());
+  } catch (const std::exception& e) {
+    fmt::print(out, "  note        no figures: {}\n", e.what());
+  }
   return status.rfind("failed", 0) == 0 ? kExitFailure : kExitOk;
 }
 
