@@ -1,0 +1,126 @@
+// The finite-element shell in the MPM engine pressed apex-down onto the rigid plate, against the
+// shell-plane contact problem solved independently by the contact solver (shallow-shell theory,
+// whose small-load slope is Reissner's point-load stiffness).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <vector>
+
+#include "contact/contact.hpp"
+#include "fem/body.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/rules.hpp"
+#include "mpm/stepper.hpp"
+
+namespace snapjump {
+namespace {
+
+// The default popper's shell at the default preset's mesh and grid (sqrt(hR)/2 elements, one
+// quadratic element through h, cells of 0.025 R), its rim lowered at 0.05 m/s onto the plate.
+TEST(ShellOnPlate, ForceAgainstIndentationFollowsTheContactSolver) {
+  const double R = 0.030, h = 0.002, E = 1.2e6, nu = 0.45, rho = 1160.0;
+  const double dx = 0.025 * R, v0 = 0.05;
+  auto m = mesh::make_cap_mesh({R, h, 80.0 * std::numbers::pi / 180, std::sqrt(h * R) / 2, 1});
+  const double lowest = *std::min_element(m.nodes.z.begin(), m.nodes.z.end());
+  mesh::translate_z(m, 2.0 * dx - lowest);
+  const fem::Body shell(m, fem::Material::from_young(E, nu, rho));
+  mpm::BodyForces forces(shell, 0.0);
+  // Light damping keeps the contact's ringing down; the loading is slow against the shell's
+  // waves (0.05 m/s against about 30 m/s), so the curve is the quasi-static one.
+  mpm::Stepper s(mpm::particles_of(shell), forces,
+                 {shell.stable_time_step(0.4), dx, 0.5, 0.05 * std::sqrt(E / rho) / R});
+  mpm::RigidBody rim;  // moves at v0 whatever the shell does
+  rim.mass = 1e9;
+  rim.vz = -v0;
+  s.add_rule(std::make_unique<mpm::ClampRule>(rim));
+  auto& plate = dynamic_cast<mpm::PlateRule&>(s.add_rule(std::make_unique<mpm::PlateRule>(0.3)));
+  s.add_rigid_body(rim);
+
+  struct Sample {
+    double lowered, F;  // rim lowered since the start [m], plate force (0.5 ms mean) [N]
+  };
+  std::vector<Sample> samples;
+  double sum = 0.0, next = 0.5e-3;
+  int n = 0;
+  while (rim.z > -(2.0 * dx + 5.0e-3)) {
+    s.step();
+    sum += plate.force();
+    ++n;
+    if (s.time() >= next) {
+      samples.push_back({-rim.z, sum / n});
+      sum = 0.0;
+      n = 0;
+      next += 0.5e-3;
+    }
+  }
+
+  // The contact solver's disk branch in physical units: F = (D / R) N, e = e_hat h / sqrt(kappa).
+  const double kappa = 12.0 * (1.0 - nu * nu);
+  const double D = E * h * h * h / kappa;
+  std::vector<std::pair<double, double>> theory;  // (e, F)
+  for (const auto& p : contact::disk_branch()) {
+    theory.emplace_back(p.e_hat * h / std::sqrt(kappa), D / R * p.N);
+  }
+  const auto F_theory = [&](double e) {
+    if (e <= 0.0) return 0.0;
+    for (std::size_t i = 1; i < theory.size(); ++i) {
+      if (theory[i].first >= e) {
+        const auto [e0, f0] = theory[i - 1];
+        const auto [e1, f1] = theory[i];
+        return f0 + (f1 - f0) * (e - e0) / (e1 - e0);
+      }
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+
+  // Where the contact starts is known only to about a grid cell (the plate acts on the grid
+  // nodes within its reach), so the one free parameter is the rim height at first contact,
+  // fitted over the samples with 0.5 N < F < 2 N (e from about 0.7 h to 2 h; below, the
+  // uncertainty of where contact starts, a fraction of a cell, dominates the relative error).
+  double best_rms = INFINITY, best_start = 0.0;
+  for (double start = 0.5 * dx; start <= 4.0 * dx; start += 1e-6) {
+    double ss = 0.0;
+    int count = 0;
+    for (const auto& q : samples) {
+      if (q.F < 0.5 || q.F > 2.0) continue;
+      const double f = F_theory(q.lowered - start);
+      if (!std::isfinite(f)) continue;
+      ss += (q.F - f) * (q.F - f);
+      ++count;
+    }
+    if (count > 20 && std::sqrt(ss / count) < best_rms) {
+      best_rms = std::sqrt(ss / count);
+      best_start = start;
+    }
+  }
+  double worst = 0.0;
+  for (const auto& q : samples) {
+    if (q.F < 0.5 || q.F > 2.0) continue;
+    worst = std::max(worst, std::abs(q.F / F_theory(q.lowered - best_start) - 1.0));
+  }
+  // The surface first touched the plate's reach at lowered = 2 dx - (reach); the fit says where.
+  const double reach = 2.0 * dx - best_start;
+  std::printf(
+      "shell on plate: rms %.4f N, worst %.2f %% over 0.5-2 N; fitted contact start %.3f mm "
+      "(surface %.3f mm = %.2f cells above the plate when the force begins)\n",
+      best_rms, 100 * worst, 1e3 * best_start, 1e3 * reach, reach / dx);
+  for (double e_mm : {1.0, 2.0, 3.0, 4.0}) {
+    const auto it = std::min_element(samples.begin(), samples.end(), [&](auto a, auto b) {
+      return std::abs(a.lowered - best_start - e_mm * 1e-3) <
+             std::abs(b.lowered - best_start - e_mm * 1e-3);
+    });
+    std::printf("  e = %.1f mm: F = %.3f N, contact solver %.3f N\n", e_mm, it->F,
+                F_theory(e_mm * 1e-3));
+  }
+  EXPECT_LT(worst, 0.05);
+  EXPECT_LT(std::abs(reach), 1.5 * dx);  // within the grid's reach of the plate
+}
+
+}  // namespace
+}  // namespace snapjump
