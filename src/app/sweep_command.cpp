@@ -16,6 +16,18 @@ namespace snapjump::app {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+int failed_runs(const sweep::Spec& spec) {
+  int n = 0;
+  for (const auto& r : spec.runs) {
+    if (sweep::state_of(sweep::paths_of(spec, r)) == sweep::RunState::Failed) ++n;
+  }
+  return n;
+}
+
+}  // namespace
+
 SweepCommand::SweepCommand(CLI::App& app) {
   cmd_ = app.add_subcommand(
       "sweep",
@@ -105,8 +117,10 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
     if (root) {
       try {
         const int with_result = sweep::write_table(spec, table);
-        fmt::print(out, "sweep done: {} of {} runs have a result, {} failed now; table {}\n",
-                   with_result, spec.runs.size(), failed, table.string());
+        const int all_failed = failed_runs(spec);
+        fmt::print(out, "sweep done: {} of {} runs have a result, {} failed ({} now); table {}\n",
+                   with_result, spec.runs.size(), all_failed, failed, table.string());
+        if (all_failed > 0) run_ok = false;
       } catch (const std::exception& e) {
         fmt::print(err, "error: {}\n", e.what());
         run_ok = false;
@@ -130,9 +144,10 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
       const auto report = sweep::execute(
           spec, todo, [&] { return std::optional(counter++); }, options, out);
       const int with_result = sweep::write_table(spec, table);
-      fmt::print(out, "sweep done: {} of {} runs have a result, {} failed now; table {}\n",
-                 with_result, spec.runs.size(), report.failed, table.string());
-      return report.failed > 0 ? kExitFailure : kExitOk;
+      const int failed = failed_runs(spec);
+      fmt::print(out, "sweep done: {} of {} runs have a result, {} failed ({} now); table {}\n",
+                 with_result, spec.runs.size(), failed, report.failed, table.string());
+      return failed > 0 ? kExitFailure : kExitOk;
     }
     const int with_result = sweep::write_table(spec, table);
     fmt::print(out, "{} of {} runs have a result; table {}\n", with_result, spec.runs.size(),
