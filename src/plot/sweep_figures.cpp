@@ -207,6 +207,21 @@ std::string scaling(const Table& t, const fs::path& table, FigureResult& result,
   return gp;
 }
 
+// The key, the grid and the plot command of a figure with one theory band ($band, columns
+// x, lower, upper) under the simulated points ($sim); without a band, a note says so.
+std::string band_under_points(const Rows& band, const char* no_band_note, FigureResult& result) {
+  std::string plot =
+      "set key top left Left reverse opaque box lc rgb '#c0c0c0'\nset grid lc rgb '#e0e0e0'\nplot ";
+  if (!band.empty()) {
+    plot += fmt::format("$band using 1:2:3 with filledcurves {} title '{}', ", style::kBand,
+                        style::kBandTitle);
+  } else {
+    result.notes.push_back(no_band_note);
+  }
+  plot += fmt::format("$sim using 1:2 {} title 'simulation'\n", style::points(style::kBlue));
+  return plot;
+}
+
 // --- lift, Fig. 3(a) ---
 
 std::string lift(const Table& t, const fs::path& table, FigureResult& result,
@@ -232,16 +247,7 @@ std::string lift(const Table& t, const fs::path& table, FigureResult& result,
   gp += "set xlabel 'pressure difference at release δp_j / p_c [-]'\n";
   gp += "set ylabel 'lift H_l [mm]'\n";
   gp += "set title 'lift of the container up to the contact transition'\n";
-  gp += "set key top left Left reverse opaque box lc rgb '#c0c0c0'\nset grid lc rgb '#e0e0e0'\n";
-  std::string plot = "plot ";
-  if (!band.empty()) {
-    plot += fmt::format("$band using 1:2:3 with filledcurves {} title '{}', ", style::kBand,
-                        style::kBandTitle);
-  } else {
-    result.notes.push_back("no row has H_l_lo and H_l_hi: no theory band");
-  }
-  plot += fmt::format("$sim using 1:2 {} title 'simulation'\n", style::points(style::kBlue));
-  return gp + plot;
+  return gp + band_under_points(band, "no row has H_l_lo and H_l_hi: no theory band", result);
 }
 
 // --- flight, Fig. 3(b) ---
@@ -296,16 +302,8 @@ std::string flight(const Table& t, const fs::path& table, FigureResult& result,
   gp += fmt::format("set xrange [{}:{}]\n", number(xr.lo), number(xr.hi));
   gp += "set xlabel 'E h^4 / (m g R^2) [-]'\nset ylabel 'flight height H_s / R [-]'\n";
   gp += "set title 'height gained by the snap'\n";
-  gp += "set key top left Left reverse opaque box lc rgb '#c0c0c0'\nset grid lc rgb '#e0e0e0'\n";
-  std::string plot = "plot ";
-  if (!band.empty()) {
-    plot += fmt::format("$band using 1:2:3 with filledcurves {} title '{}', ", style::kBand,
-                        style::kBandTitle);
-  } else {
-    result.notes.push_back("no row has positive H_s_lo and H_s_hi: no theory band");
-  }
-  plot += fmt::format("$sim using 1:2 {} title 'simulation'\n", style::points(style::kBlue));
-  return gp + plot;
+  return gp +
+         band_under_points(band, "no row has positive H_s_lo and H_s_hi: no theory band", result);
 }
 
 // --- phase diagram, Fig. 3(c) ---

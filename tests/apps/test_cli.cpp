@@ -8,27 +8,14 @@
 #include <vector>
 
 #include "app/cli.hpp"
+#include "support/cli_runner.hpp"
 
 namespace snapjump::app {
 namespace {
 
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using Result = test_support::CliResult;
 
-Result run(std::vector<std::string> args) {
-  args.insert(args.begin(), "snapjump");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  Result r;
-  r.code = run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
-}
+Result run(std::vector<std::string> args) { return test_support::run_cli(std::move(args)); }
 
 std::string example(const std::string& name) {
   return (std::filesystem::path(SNAPJUMP_SOURCE_DIR) / "examples" / name).string();

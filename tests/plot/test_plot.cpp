@@ -17,6 +17,7 @@
 #include "config/case.hpp"
 #include "plot/figures.hpp"
 #include "plot/table.hpp"
+#include "support/cli_runner.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::plot {
@@ -24,23 +25,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using Result = test_support::CliResult;
 
-Result run(std::vector<std::string> args) {
-  args.insert(args.begin(), "snapjump");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  Result r;
-  r.code = app::run_cli(static_cast<int>(argv.size()), argv.data(), out, err);
-  r.out = out.str();
-  r.err = err.str();
-  return r;
-}
+Result run(std::vector<std::string> args) { return test_support::run_cli(std::move(args)); }
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
