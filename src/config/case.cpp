@@ -149,10 +149,7 @@ class Reader {
   }
 
   void apply(const Override& o) {
-    const auto dot = o.key.find('.');
-    const auto* k = dot == std::string::npos ? nullptr
-                                             : find_key(std::string_view(o.key).substr(0, dot),
-                                                        std::string_view(o.key).substr(dot + 1));
+    const auto* k = find_quantity_key(o.key);
     if (k == nullptr) throw CaseError(fmt::format("{}: unknown case key '{}'", o.origin, o.key));
     entries_[full_key(*k)] = Entry{convert(*k, o.text, o.origin), o.text, o.origin};
   }
@@ -382,6 +379,12 @@ std::string to_toml(const Case& c) {
   }
   if (c.numerics.end_time) t += fmt::format("end_time = {}\n", num(*c.numerics.end_time));
   return t;
+}
+
+const KeySpec* find_quantity_key(std::string_view dotted) {
+  const auto dot = dotted.find('.');
+  if (dot == std::string_view::npos) return nullptr;
+  return find_key(dotted.substr(0, dot), dotted.substr(dot + 1));
 }
 
 Case parse_case(std::string_view toml_text, std::string_view source,

@@ -110,6 +110,8 @@ struct KeySpec {
 
 // All scalar keys of the case format, in the order of the documentation.
 std::span<const KeySpec> quantity_keys();
+// The key spec of a dotted key such as "shell.h"; nullptr for an unknown key.
+const KeySpec* find_quantity_key(std::string_view dotted);
 
 // Reads and checks a case file. Throws CaseError.
 Case load_case_file(const std::filesystem::path& path, std::span<const Override> overrides = {},

@@ -26,12 +26,7 @@ std::string at(const fs::path& file, const toml::source_region& r) {
   return fmt::format("{}:{}", file.string(), r.begin.line);
 }
 
-const config::KeySpec* key_spec(std::string_view key) {
-  for (const auto& k : config::quantity_keys()) {
-    if (fmt::format("{}.{}", k.table, k.name) == key) return &k;
-  }
-  return nullptr;
-}
+const config::KeySpec* key_spec(std::string_view key) { return config::find_quantity_key(key); }
 
 std::string known_keys() {
   std::string s;
