@@ -2,13 +2,17 @@
 // the flight (Fig. 3(b)), the Jump / Snap / No snap diagram (Fig. 3(c)) and the friction
 // dependence of the prefactors (Fig. 4).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <optional>
+#include <string>
 #include <system_error>
+#include <vector>
 
 #include "config/case.hpp"
 #include "plot/figures.hpp"
@@ -29,11 +33,20 @@ Table read_table(const fs::path& path) {
   return t;
 }
 
+std::string lower(std::string_view s) {
+  std::string l(s);
+  std::transform(l.begin(), l.end(), l.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return l;
+}
+
 // (x, y) of the rows where both are present, each times its scale.
-Rows pairs(const Table& t, std::string_view x, std::string_view y, double sx = 1.0,
-           double sy = 1.0) {
+// With `outcome`, only the rows whose outcome column reads so (any case).
+Rows pairs(const Table& t, std::string_view x, std::string_view y, double sx = 1.0, double sy = 1.0,
+           std::optional<std::string_view> outcome = std::nullopt) {
   Rows v;
   for (std::size_t r = 0; r < t.rows(); ++r) {
+    if (outcome && lower(t.text(r, "outcome")) != *outcome) continue;
     const auto a = t.number(r, x);
     const auto b = t.number(r, y);
     if (a && b) v.push_back({*a * sx, *b * sy});
@@ -147,12 +160,31 @@ std::string scaling(const Table& t, const fs::path& table, FigureResult& result,
       "# The bands are y = alpha_lo x .. alpha_hi x, the alpha bounds of the table's first row\n"
       "# (they depend only on nu).\n";
   gp += terminal(options.format, 1200, 1000, result.figure, 14);
+  // With an outcome column, the runs that jump and those that only snap are told apart (a
+  // snapping popper's F* includes its weight, and its t* is not a flight's launch); other
+  // outcomes have no onset and are left out.
+  struct Group {
+    std::optional<std::string_view> outcome;
+    const char* title;
+    std::string colour;
+  };
+  std::vector<Group> groups;
+  if (t.has("outcome")) {
+    groups = {{"jump", "simulation: Jump", style::points(style::kBlue)},
+              {"snap", "simulation: Snap", style::points(style::kOrange, 8)}};
+  } else {
+    groups = {{std::nullopt, "simulation", style::points(style::kBlue)}};
+  }
   std::size_t total = 0;
+  std::vector<std::vector<Rows>> panel_rows(kScalingPanels.size());
   for (std::size_t k = 0; k < kScalingPanels.size(); ++k) {
     const auto& p = kScalingPanels[k];
-    const auto rows = pairs(t, p.x, p.y, p.scale, p.scale);
-    total += rows.size();
-    gp += datablock(fmt::format("panel{}", k), fmt::format("{}  {}", p.x, p.y), rows);
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      panel_rows[k].push_back(pairs(t, p.x, p.y, p.scale, p.scale, groups[g].outcome));
+      total += panel_rows[k].back().size();
+      gp += datablock(fmt::format("panel{}_{}", k, g), fmt::format("{}  {}", p.x, p.y),
+                      panel_rows[k].back());
+    }
   }
   if (total == 0) {
     throw PlotInputError(fmt::format(
@@ -167,7 +199,8 @@ std::string scaling(const Table& t, const fs::path& table, FigureResult& result,
   gp += "set grid lc rgb '#e0e0e0'\nset samples 2\n";
   for (std::size_t k = 0; k < kScalingPanels.size(); ++k) {
     const auto& p = kScalingPanels[k];
-    const auto rows = pairs(t, p.x, p.y, p.scale, p.scale);
+    Rows rows;
+    for (const auto& g : panel_rows[k]) rows.insert(rows.end(), g.begin(), g.end());
     const auto bounds = first_bounds(t, std::string(p.alpha) + "_lo", std::string(p.alpha) + "_hi");
     const auto xs = column_extent(rows, 0);
     const auto ys = column_extent(rows, 1);
@@ -178,7 +211,8 @@ std::string scaling(const Table& t, const fs::path& table, FigureResult& result,
     if (bounds) ymax = std::max(ymax, bounds->second * xmax);
     if (!(ymax > 0.0)) ymax = 1.0;
     gp += fmt::format("set title '{}'\n", p.tag);
-    gp += fmt::format("set xrange [0:{}]\nset yrange [0:{}]\n", number(xmax), number(1.08 * ymax));
+    // Headroom above the points for the key.
+    gp += fmt::format("set xrange [0:{}]\nset yrange [0:{}]\n", number(xmax), number(1.35 * ymax));
     gp += fmt::format("set xlabel '{}'\nset ylabel '{}'\n", p.xlabel, p.ylabel);
     std::string plot = "plot ";
     if (bounds) {
@@ -197,8 +231,13 @@ std::string scaling(const Table& t, const fs::path& table, FigureResult& result,
       gp += "set label 1 'no data in the table' at graph 0.5, 0.5 center\n";
       plot += "NaN notitle\n";
     } else {
-      plot +=
-          fmt::format("$panel{} using 1:2 {} title 'simulation'\n", k, style::points(style::kBlue));
+      std::vector<std::string> parts;
+      for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (panel_rows[k][g].empty()) continue;
+        parts.push_back(fmt::format("$panel{}_{} using 1:2 {} title '{}'", k, g, groups[g].colour,
+                                    groups[g].title));
+      }
+      plot += fmt::format("{}\n", fmt::join(parts, ", "));
     }
     gp += plot;
     gp += "unset label 1\nunset label 2\n";
@@ -307,13 +346,6 @@ std::string flight(const Table& t, const fs::path& table, FigureResult& result,
 }
 
 // --- phase diagram, Fig. 3(c) ---
-
-std::string lower(std::string_view s) {
-  std::string l(s);
-  std::transform(l.begin(), l.end(), l.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return l;
-}
 
 // The net weight at which the theory's snap margin U / (mg H_l) (its lower or upper end) is 1,
 // by bisection in log mg; nothing when there is none (H_l <= 0: every weight snaps).

@@ -366,7 +366,7 @@ TEST_F(Plot, SweepFigures) {
   const std::vector<std::pair<std::string, std::vector<std::string>>> figures = {
       {"scaling",
        {"r_c = √(hR) [mm]", "F_c = E h^3 / R [N]", "t_c = √(m R / (E h^2)) [ms]",
-        "theory bounds (contact solver)"}},
+        "theory bounds (contact solver)", "simulation: Jump", "simulation: Snap"}},
       {"lift", {"δp_j / p_c [-]", "lift H_l [mm]"}},
       {"flight", {"E h^4 / (m g R^2) [-]", "H_s / R [-]"}},
       {"phase",
