@@ -1,5 +1,4 @@
 #include "app/run.hpp"
-#include "plot/figures.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
@@ -19,6 +18,7 @@
 #include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
 #include "mpm/stepper.hpp"
+#include "plot/figures.hpp"
 #include "popper/popper.hpp"
 #include "theory/scaling.hpp"
 
@@ -278,9 +278,11 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       if (pop.time() + 1e-12 >= loop.next_sample) {
         loop.next_sample += numerics.probe_interval;
         const auto s = record();
-        // Stop at the apex of the flight: off the plate for 5 ms and coming down.
+        // Stop at the apex of the flight: off the plate for 5 ms and coming down. The flight
+        // starts only when the container leaves the plate going up: a shell pulled back off the
+        // plate by the suction while the popper settles is not a flight.
         if (s.contact == measure::ContactState::None && s.F == 0.0) {
-          if (loop.airborne_since < 0) loop.airborne_since = s.t;
+          if (loop.airborne_since < 0 && s.vz > 0.0) loop.airborne_since = s.t;
         } else {
           loop.airborne_since = -1.0;
         }

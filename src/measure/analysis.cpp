@@ -169,6 +169,23 @@ void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak
         break;
       }
     }
+    if (stays && s.has(kHeight)) {
+      // A launch leaves the plate going up. Contact lost while the container does not rise (the
+      // suction pulling the everted shell back in as the popper settles) is not one.
+      const auto z = s.column(kHeight);
+      const double t_after = std::min(t_cross + o.min_flight_time, t.back());
+      const double z_at = interpolate(t, z, t_cross);
+      const double z_after = interpolate(t, z, t_after);
+      if (!(z_after > z_at)) {
+        a.warnings.push_back(fmt::format(
+            "F falls below the launch threshold at t = {:.6g} s while the container is not rising "
+            "(z from {:.4g} to {:.4g} mm in the next {:.3g} ms): not a launch",
+            t_cross, 1e3 * z_at, 1e3 * z_after, 1e3 * (t_after - t_cross)));
+        while (j < n && F[j] < level) ++j;
+        k = j;
+        continue;
+      }
+    }
     if (stays) {
       a.t_launch = t_cross;
       if (j == n && t.back() - t_cross < o.min_flight_time) {

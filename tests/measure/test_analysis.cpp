@@ -192,6 +192,39 @@ TEST(Analysis, LaunchAfterAShortDip) {
   EXPECT_NEAR(*a.t_star, 40.92e-3 - 20.05e-3, 1e-10);
 }
 
+TEST(Analysis, ContactLostWhileComingDownIsNotALaunch) {
+  // After the snap the popper settles on the plate (F = weight), then from 60 ms the container
+  // sinks while F falls to 0 and stays there: the shell is pulled off the plate from above, the
+  // popper never leaves it going up. Snap, with a note saying why.
+  Spec spec;
+  spec.F = [](double t) {
+    if (t < 28e-3) return F_jump(t);
+    if (t < 60e-3) return 0.5;
+    if (t < 61e-3) return 0.5 * (1.0 - (t - 60e-3) / 1e-3);
+    return 0.0;
+  };
+  spec.z = [](double t) {
+    const double top = kV0 * kT1;
+    if (t <= kT1) return kV0 * t;
+    if (t <= 60e-3) return top;
+    return top - 0.05 * (t - 60e-3);  // coming down at 5 cm/s
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Snap);
+  EXPECT_FALSE(a.t_launch);
+  EXPECT_TRUE(has_warning(a, "while the container is not rising")) << a.warnings.size();
+  // The same force record with the container rising from 60 ms is a jump.
+  spec.z = [](double t) {
+    if (t <= kT1) return kV0 * t;
+    if (t <= 60e-3) return kV0 * kT1;
+    return kV0 * kT1 + 0.05 * (t - 60e-3);
+  };
+  const auto b = analyze(make(spec), with_R());
+  EXPECT_EQ(b.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(b.t_launch);
+  EXPECT_NEAR(*b.t_launch, 60.92e-3, 1e-10);
+}
+
 TEST(Analysis, NoSnapWhenApexStaysAway) {
   Spec spec;
   spec.w = [](double) { return 1.0e-3; };  // w / R = 0.0333 > 0.03 throughout
