@@ -309,6 +309,12 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       ->add_option("--resume", run_opts.resume,
                    "continue a stopped or paused run in this folder from its last checkpoint")
       ->check(CLI::ExistingDirectory);
+  std::string reanalyze;
+  run_cmd
+      ->add_option("--reanalyze", reanalyze,
+                   "analyse the time series of a finished run in this folder again and rewrite "
+                   "its summary.json (after an update of the analysis); simulates nothing")
+      ->check(CLI::ExistingDirectory);
 
   SweepCommand sweep_cmd(app);
   PlotCommand plot_cmd(app);
@@ -334,6 +340,15 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         } catch (const units::UnitError& e) {
           throw config::CaseError(fmt::format("--pause-at: {}", e.what()));
         }
+      }
+      if (!reanalyze.empty()) {
+        if (!run_case.case_file.empty() || !run_case.values.empty() || !run_resolution.empty() ||
+            !run_opts.output.empty() || !run_opts.resume.empty() || run_opts.pause_at) {
+          throw config::CaseError(
+              "--reanalyze reads a finished run's folder as it is: give no case file, case "
+              "values, --resolution, --output, --resume or --pause-at with it");
+        }
+        return reanalyze_run(reanalyze, out);
       }
       if (!run_opts.resume.empty()) {
         if (!run_case.case_file.empty() || !run_case.values.empty() || !run_resolution.empty() ||

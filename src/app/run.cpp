@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "app/cli.hpp"
+#include "config/units.hpp"
 #include "io/prediction_report.hpp"
 #include "io/vtu.hpp"
 #include "measure/analysis.hpp"
@@ -141,6 +142,50 @@ void print_numerics(std::ostream& out, const popper::Popper& pop, const mpm::Tim
              pop.body().num_elements(), pop.body().num_nodes(), 1e3 * n.cap.element_size,
              n.cap.layers, 1e3 * n.dx, 1e6 * step.dt, 1e6 * step.elastic, 1e6 * step.grid,
              step.limiting);
+}
+
+// Analyses the run's time series, puts the measured quantities, the theory's and their
+// comparison into the summary, writes it and prints the results.
+measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, const config::Case& c,
+                                const measure::TimeSeries& series, const std::string& status,
+                                std::ostream& out) {
+  const auto analysis = measure::analyze(series, {}, &c);
+  const auto prediction = theory::predict(c, theory::contact_constants());
+  summary["measured"] = measure::to_json(analysis);
+  summary["theory"] = io::to_json(c, prediction);
+  const auto compare = [&](const char* name, const std::optional<double>& v, theory::Range r) {
+    summary["comparison"][name] = {{"measured", v ? nlohmann::json(*v) : nlohmann::json(nullptr)},
+                                   {"lower", r.lo},
+                                   {"upper", r.hi},
+                                   {"inside", v && *v >= r.lo && *v <= r.hi}};
+  };
+  compare("alpha_r", analysis.alpha_r, prediction.alpha.alpha_r);
+  compare("alpha_e", analysis.alpha_e, prediction.alpha.alpha_e);
+  compare("alpha_F", analysis.alpha_F, prediction.alpha.alpha_F);
+  compare("alpha_t", analysis.alpha_t, prediction.alpha.alpha_t);
+  summary["comparison"]["outcome"] = {{"simulated", measure::outcome_text(analysis.outcome)},
+                                      {"predicted", prediction.outcome.text()}};
+  write_json_file(dir / "summary.json", summary);
+
+  const auto show = [&](const char* label, const std::optional<double>& v, double scale,
+                        const char* unit, std::string theory) {
+    fmt::print(out, "  {:<28} {:>10}  {:<4} theory {}\n", label,
+               v ? fmt::format("{:.4g}", *v / scale) : std::string("-"), unit, theory);
+  };
+  const auto range = [](theory::Range r, double scale) {
+    return fmt::format("{:.4g} .. {:.4g}", r.lo / scale, r.hi / scale);
+  };
+  fmt::print(out, "  status      {}\n  outcome     {} (theory: {})\n", status,
+             measure::outcome_text(analysis.outcome), prediction.outcome.text());
+  show("r*  contact radius", analysis.r_star, 1e-3, "mm", range(prediction.r_star, 1e-3));
+  show("e*  apex displacement", analysis.e_star, 1e-3, "mm", range(prediction.e_star, 1e-3));
+  show("F*  peak force", analysis.F_star, 1.0, "N", range(prediction.F_star, 1.0));
+  show("t*  onset to launch", analysis.t_star, 1e-3, "ms", range(prediction.t_star, 1e-3));
+  show("H_l lift to the onset", analysis.H_l, 1e-3, "mm", range(prediction.H_l, 1e-3));
+  show("H_s flight from the snap", analysis.H_s, 1e-3, "mm", range(prediction.H_s, 1e-3));
+  show("H   jump height", analysis.H, 1e-3, "mm", range(prediction.H, 1e-3));
+  for (const auto& w : analysis.warnings) fmt::print(out, "  note        {}\n", w);
+  return analysis;
 }
 
 }  // namespace
@@ -328,45 +373,10 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   }
   snapshot();
 
-  const auto analysis = measure::analyze(series, {}, &c);
-  const auto prediction = theory::predict(c, theory::contact_constants());
   summary["status"] = status;
   summary["wall_time"] = wall();
   summary["steps"] = pop.stepper().steps();
-  summary["measured"] = measure::to_json(analysis);
-  summary["theory"] = io::to_json(c, prediction);
-  const auto compare = [&](const char* name, const std::optional<double>& v, theory::Range r) {
-    summary["comparison"][name] = {{"measured", v ? nlohmann::json(*v) : nlohmann::json(nullptr)},
-                                   {"lower", r.lo},
-                                   {"upper", r.hi},
-                                   {"inside", v && *v >= r.lo && *v <= r.hi}};
-  };
-  compare("alpha_r", analysis.alpha_r, prediction.alpha.alpha_r);
-  compare("alpha_e", analysis.alpha_e, prediction.alpha.alpha_e);
-  compare("alpha_F", analysis.alpha_F, prediction.alpha.alpha_F);
-  compare("alpha_t", analysis.alpha_t, prediction.alpha.alpha_t);
-  summary["comparison"]["outcome"] = {{"simulated", measure::outcome_text(analysis.outcome)},
-                                      {"predicted", prediction.outcome.text()}};
-  write_json_file(dir / "summary.json", summary);
-
-  const auto show = [&](const char* label, const std::optional<double>& v, double scale,
-                        const char* unit, std::string theory) {
-    fmt::print(out, "  {:<28} {:>10}  {:<4} theory {}\n", label,
-               v ? fmt::format("{:.4g}", *v / scale) : std::string("-"), unit, theory);
-  };
-  const auto range = [](theory::Range r, double scale) {
-    return fmt::format("{:.4g} .. {:.4g}", r.lo / scale, r.hi / scale);
-  };
-  fmt::print(out, "  status      {}\n  outcome     {} (theory: {})\n", status,
-             measure::outcome_text(analysis.outcome), prediction.outcome.text());
-  show("r*  contact radius", analysis.r_star, 1e-3, "mm", range(prediction.r_star, 1e-3));
-  show("e*  apex displacement", analysis.e_star, 1e-3, "mm", range(prediction.e_star, 1e-3));
-  show("F*  peak force", analysis.F_star, 1.0, "N", range(prediction.F_star, 1.0));
-  show("t*  onset to launch", analysis.t_star, 1e-3, "ms", range(prediction.t_star, 1e-3));
-  show("H_l lift to the onset", analysis.H_l, 1e-3, "mm", range(prediction.H_l, 1e-3));
-  show("H_s flight from the snap", analysis.H_s, 1e-3, "mm", range(prediction.H_s, 1e-3));
-  show("H   jump height", analysis.H, 1e-3, "mm", range(prediction.H, 1e-3));
-  for (const auto& w : analysis.warnings) fmt::print(out, "  note        {}\n", w);
+  const auto analysis = write_results(dir, summary, c, series, status, out);
   fmt::print(out, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
              dir.string(), pvd.size());
   // The figures a reader looks at first: the Fig. 2(a) panels and cross-sections of the shell
@@ -392,6 +402,38 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     fmt::print(out, "  note        no figures: {}\n", e.what());
   }
   return status.rfind("failed", 0) == 0 ? kExitFailure : kExitOk;
+}
+
+int reanalyze_run(const std::filesystem::path& dir, std::ostream& out) {
+  for (const char* name : {"case.toml", "summary.json", "series.csv"}) {
+    if (!fs::is_regular_file(dir / name)) {
+      throw config::CaseError(
+          fmt::format("--reanalyze {}: not a snapjump run folder (no {})", dir.string(), name));
+    }
+  }
+  const auto c = config::load_case_file(dir / "case.toml");
+  nlohmann::json summary;
+  try {
+    std::ifstream in(dir / "summary.json");
+    summary = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw config::CaseError(
+        fmt::format("--reanalyze {}: summary.json cannot be read: {}", dir.string(), e.what()));
+  }
+  if (!summary.contains("measured") || !summary.contains("status")) {
+    throw config::CaseError(fmt::format(
+        "--reanalyze {}: the run has no results yet (status: {}); finish it with --resume first",
+        dir.string(), summary.value("status", std::string("unknown"))));
+  }
+  const units::UnitParser parser;
+  const auto series = measure::TimeSeries::read_csv_file(dir / "series.csv", &parser);
+  fmt::print(out,
+             "snapjump run --reanalyze: {}\n  series      {} samples, t = {:.6g} .. {:.6g} s\n",
+             dir.string(), series.size(), series.empty() ? 0.0 : series.time().front(),
+             series.empty() ? 0.0 : series.time().back());
+  write_results(dir, summary, c, series, summary["status"].get<std::string>(), out);
+  fmt::print(out, "  files       {}/summary.json rewritten\n", dir.string());
+  return kExitOk;
 }
 
 }  // namespace snapjump::app

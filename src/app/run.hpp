@@ -1,6 +1,7 @@
 // `snapjump run`: the simulated experiment of one popper, into a new output folder.
 #pragma once
 
+#include <filesystem>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -22,5 +23,11 @@ struct RunOptions {
 // snapshots/*.vtu and run.pvd. Returns an exit status; throws config::CaseError for bad input.
 int run_simulation(const config::Case& c, const RunOptions& options, std::ostream& out,
                    std::ostream& err);
+
+// Analyses a finished run's series.csv again (with this build's analysis and theory) and
+// rewrites the measured quantities, the theory and the comparison in its summary.json; the time
+// series and snapshots are left as they are. Throws config::CaseError for a folder that is not a
+// finished run.
+int reanalyze_run(const std::filesystem::path& dir, std::ostream& out);
 
 }  // namespace snapjump::app

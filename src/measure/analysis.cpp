@@ -111,7 +111,10 @@ std::optional<std::size_t> find_onset(const TimeSeries& s, const AnalysisOptions
 
 // The launch after the force peak at index `peak`: the first crossing below the threshold after
 // which F stays below it for min_flight_time (or to the end of the record).
-void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak, Analysis& a) {
+// Crossings are looked for up to the sample `last` (inclusive); F staying below is checked on the
+// whole record.
+void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak, std::size_t last,
+                 Analysis& a) {
   const auto t = s.time();
   const auto F = s.column(kForce);
   const std::size_t n = t.size();
@@ -157,7 +160,7 @@ void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak
     return;
   }
 
-  for (std::size_t k = peak + 1; k < n; ++k) {
+  for (std::size_t k = peak + 1; k < n && k <= last; ++k) {
     if (F[k] >= level) continue;
     // F[k - 1] >= level: the first sample of a candidate stretch below the threshold.
     const double t_cross = crossing_time(t, F, k, level);
@@ -250,15 +253,42 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     if (series.has(kIndentation)) a.e_star = interpolate(t, series.column(kIndentation), t_on);
     if (series.has(kHeight)) a.H_l = interpolate(t, series.column(kHeight), t_on);
 
+    // The snap lasts until the popper leaves the plate or the shell goes back to a ring contact:
+    // the apex again above the onset level while the plate still pushes (after a snap without a
+    // launch, the suction can pull the shell back in and the popper lands on it again; that
+    // landing is not the snap's force). F* and the launch are looked for within it.
+    std::size_t last = n - 1;
+    bool ring_again = false;
+    if (a.onset_source == OnsetSource::ApexGap) {
+      const auto w = series.column(kApexGap);
+      const double level = options.onset_ratio * *a.R;
+      for (std::size_t i = *onset + 1; i < n; ++i) {
+        if (w[i] > level && F[i] > 0.0) {
+          last = i;
+          ring_again = true;
+          break;
+        }
+      }
+    }
     const auto peak = static_cast<std::size_t>(
-        std::max_element(F.begin() + static_cast<std::ptrdiff_t>(*onset), F.end()) - F.begin());
+        std::max_element(F.begin() + static_cast<std::ptrdiff_t>(*onset),
+                         F.begin() + static_cast<std::ptrdiff_t>(last) + 1) -
+        F.begin());
     a.F_star = F[peak];
     a.t_F_star = t[peak];
     if (*a.F_star > 0.0) {
-      find_launch(series, options, peak, a);
+      find_launch(series, options, peak, last, a);
     } else {
       a.warnings.push_back(
           fmt::format("F is never positive after the onset (peak {} N): no launch", *a.F_star));
+    }
+    // After a launch the apex rises with the popper (and a noisy F may be above 0): only without
+    // one does the shell's return to a ring contact say something.
+    if (ring_again && !a.t_launch) {
+      a.warnings.push_back(fmt::format(
+          "the shell is back on a ring contact at t = {:.6g} s (w / R above {} while F > 0) "
+          "without having left the plate: F* is the largest force before that",
+          t[last], options.onset_ratio));
     }
     if (a.t_launch) a.t_star = *a.t_launch - t_on;
   }

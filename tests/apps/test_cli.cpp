@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "app/cli.hpp"
+#include "config/case.hpp"
 #include "support/cli_runner.hpp"
 
 namespace snapjump::app {
@@ -239,6 +241,58 @@ TEST(Cli, ResumeTakesNoNewCase) {
   const auto r = run({"run", "--resume", dir.string(), "--R", "20mm"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("give no case file"), std::string::npos) << r.err;
+}
+
+// A finished run's folder with a stale summary: the series is a jump of the default popper.
+std::filesystem::path stale_run(const std::string& name, bool finished) {
+  const auto dir = std::filesystem::temp_directory_path() / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "case.toml") << config::to_toml(config::default_case());
+  {
+    std::ofstream csv(dir / "series.csv");
+    csv << "t,z,r,w,e,F,contact\n";
+    for (int i = 0; i <= 600; ++i) {
+      const double t = 1e-4 * i;
+      const double w = std::max(0.01 - 0.5 * t, 0.0);  // below 0.03 R = 0.9 mm from 18.2 ms
+      double F = 0.48;
+      if (t >= 0.019)
+        F = std::max(0.0, 2.0 * (1.0 - (t - 0.019) / 0.004));
+      else if (t >= 0.018)
+        F = 0.48 + 1.52 * (t - 0.018) / 0.001;
+      const double z = t <= 0.023 ? t : 0.023 + (t - 0.023) - 4.9 * (t - 0.023) * (t - 0.023);
+      csv << t << ',' << z << ',' << 0.015 << ',' << w << ',' << 0.004 << ',' << F << ','
+          << (w > 0.0 ? "ring" : "disk") << '\n';
+    }
+  }
+  nlohmann::json summary = {{"status", finished ? "completed" : "running"}, {"wall_time", 12.5}};
+  if (finished) summary["measured"] = {{"outcome", "No snap"}};
+  std::ofstream(dir / "summary.json") << summary.dump(2);
+  return dir;
+}
+
+TEST(Cli, ReanalyzeRewritesTheSummaryOfAFinishedRun) {
+  const auto dir = stale_run("snapjump_cli_reanalyze", true);
+  const auto r = run({"run", "--reanalyze", dir.string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("Jump (theory: Jump)"), std::string::npos) << r.out;
+  std::ifstream in(dir / "summary.json");
+  const auto summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["measured"]["outcome"], "Jump");
+  EXPECT_EQ(summary["comparison"]["outcome"]["simulated"], "Jump");
+  EXPECT_TRUE(summary["theory"].contains("quantities"));
+  EXPECT_EQ(summary["status"], "completed");  // what the run itself wrote stays
+  EXPECT_DOUBLE_EQ(summary["wall_time"].get<double>(), 12.5);
+}
+
+TEST(Cli, ReanalyzeRefusesARunWithoutResults) {
+  const auto dir = stale_run("snapjump_cli_reanalyze_running", false);
+  const auto r = run({"run", "--reanalyze", dir.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("no results yet"), std::string::npos) << r.err;
+  const auto m = run({"run", "--reanalyze", dir.string(), "--mu", "0.1"});
+  EXPECT_EQ(m.code, kExitBadInput);
+  EXPECT_NE(m.err.find("--reanalyze reads"), std::string::npos) << m.err;
 }
 
 TEST(Cli, PauseAtNeedsATime) {

@@ -225,6 +225,29 @@ TEST(Analysis, ContactLostWhileComingDownIsNotALaunch) {
   EXPECT_NEAR(*b.t_launch, 60.92e-3, 1e-10);
 }
 
+TEST(Analysis, LandingAfterTheShellIsPulledBackInIsNotTheSnap) {
+  // A snap without a launch (F settles on the weight); from 60 ms the shell is pulled back in (w
+  // above the onset level while the plate still pushes), the popper drops onto it (3 N at 70 ms)
+  // and bounces off for 10 ms going up. Neither that peak nor that hop belongs to the snap.
+  Spec spec;
+  spec.F = [](double t) {
+    if (t < 28e-3) return F_jump(t);
+    if (t < 68e-3) return 0.5;
+    if (t < 70e-3) return 0.5 + 2.5 * (t - 68e-3) / 2e-3;
+    if (t < 72e-3) return 3.0 * (1.0 - (t - 70e-3) / 2e-3);
+    if (t < 82e-3) return 0.0;
+    return 0.5;
+  };
+  spec.w = [](double t) { return t < 60e-3 ? w_ref(t) : 2e-3; };  // w / R = 0.067 from 60 ms
+  spec.z = [](double t) { return t < 72e-3 ? kV0 * std::min(t, kT1) : kV0 * kT1 + (t - 72e-3); };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Snap);
+  ASSERT_TRUE(a.F_star);
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-12);
+  EXPECT_FALSE(a.t_launch);
+  EXPECT_TRUE(has_warning(a, "back on a ring contact at t = 0.06 s")) << a.warnings.size();
+}
+
 TEST(Analysis, NoSnapWhenApexStaysAway) {
   Spec spec;
   spec.w = [](double) { return 1.0e-3; };  // w / R = 0.0333 > 0.03 throughout
