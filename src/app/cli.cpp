@@ -341,9 +341,11 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
           throw config::CaseError(fmt::format("--pause-at: {}", e.what()));
         }
       }
+      // A new run's set-up, which --resume and --reanalyze take from the run's folder instead.
+      const bool sets_up_a_run = !run_case.case_file.empty() || !run_case.values.empty() ||
+                                 !run_resolution.empty() || !run_opts.output.empty();
       if (!reanalyze.empty()) {
-        if (!run_case.case_file.empty() || !run_case.values.empty() || !run_resolution.empty() ||
-            !run_opts.output.empty() || !run_opts.resume.empty() || run_opts.pause_at) {
+        if (sets_up_a_run || !run_opts.resume.empty() || run_opts.pause_at) {
           throw config::CaseError(
               "--reanalyze reads a finished run's folder as it is: give no case file, case "
               "values, --resolution, --output, --resume or --pause-at with it");
@@ -351,8 +353,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         return reanalyze_run(reanalyze, out);
       }
       if (!run_opts.resume.empty()) {
-        if (!run_case.case_file.empty() || !run_case.values.empty() || !run_resolution.empty() ||
-            !run_opts.output.empty()) {
+        if (sets_up_a_run) {
           throw config::CaseError(
               "--resume continues a run as it was set up (its case.toml, its folder): give no "
               "case file, case values, --resolution or --output with it");

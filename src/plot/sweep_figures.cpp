@@ -166,7 +166,7 @@ std::string scaling(const Table& t, const fs::path& table, FigureResult& result,
   struct Group {
     std::optional<std::string_view> outcome;
     const char* title;
-    std::string colour;
+    std::string points;  // gnuplot point style
   };
   std::vector<Group> groups;
   if (t.has("outcome")) {
@@ -234,7 +234,7 @@ std::string scaling(const Table& t, const fs::path& table, FigureResult& result,
       std::vector<std::string> parts;
       for (std::size_t g = 0; g < groups.size(); ++g) {
         if (panel_rows[k][g].empty()) continue;
-        parts.push_back(fmt::format("$panel{}_{} using 1:2 {} title '{}'", k, g, groups[g].colour,
+        parts.push_back(fmt::format("$panel{}_{} using 1:2 {} title '{}'", k, g, groups[g].points,
                                     groups[g].title));
       }
       plot += fmt::format("{}\n", fmt::join(parts, ", "));

@@ -26,8 +26,6 @@ std::string at(const fs::path& file, const toml::source_region& r) {
   return fmt::format("{}:{}", file.string(), r.begin.line);
 }
 
-const config::KeySpec* key_spec(std::string_view key) { return config::find_quantity_key(key); }
-
 std::string known_keys() {
   std::string s;
   for (const auto& k : config::quantity_keys()) s += fmt::format(" {}.{}", k.table, k.name);
@@ -37,7 +35,7 @@ std::string known_keys() {
 }
 
 void check_key(const fs::path& file, const toml::source_region& r, const std::string& key) {
-  if (key == kResolutionKey || key_spec(key) != nullptr) return;
+  if (key == kResolutionKey || config::find_quantity_key(key) != nullptr) return;
   throw SweepError(fmt::format("{}: unknown case key '{}'; a sweep may set or vary:{}", at(file, r),
                                key, known_keys()));
 }
@@ -98,7 +96,7 @@ std::vector<Setting> values_of(const fs::path& file, const std::string& key, con
       out.push_back({key, *text, origin});
     }
   } else if (const auto* range = n.as_table()) {
-    const auto* spec = key_spec(key);
+    const auto* spec = config::find_quantity_key(key);
     if (spec == nullptr) {
       throw SweepError(fmt::format("{}: {} cannot take a range (it is not a number)", origin, key));
     }
@@ -418,7 +416,7 @@ int write_table(const Spec& spec, const fs::path& csv) {
   std::vector<std::string> header = {"run", "status", "outcome", "predicted_outcome"};
   std::vector<const config::KeySpec*> varied;
   for (const auto& k : spec.varied_keys) {
-    const auto* ks = key_spec(k);
+    const auto* ks = config::find_quantity_key(k);
     varied.push_back(ks);
     const std::string unit = ks ? std::string(units::si_unit(ks->dimension)) : "";
     header.push_back(ks ? fmt::format("{} [{}]", k, unit.empty() ? "1" : unit) : k);
