@@ -1,11 +1,12 @@
 # The two commands of README.md:
 #   make run    installs what is missing, builds (Release) and runs the main job
 #   make test   installs what is missing, builds (Release) and runs the test suite
+# and, outside the suite, make validate-long (the long validations, label `long`).
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=Release -DSNAPJUMP_WERROR=ON
 
-.PHONY: run test deps build bench format clean
+.PHONY: run test validate-long deps build bench format clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -19,7 +20,10 @@ run: build
 	$(BUILD)/snapjump run
 
 test: build
-	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
+	cd $(BUILD) && ctest -LE long --output-on-failure -j $(JOBS) --timeout 900
+
+validate-long: build
+	$(BUILD)/snapjump_long_validation
 
 format:
 	clang-format -i $$(git ls-files '*.cpp' '*.hpp')

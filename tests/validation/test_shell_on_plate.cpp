@@ -12,11 +12,7 @@
 #include <vector>
 
 #include "contact/contact.hpp"
-#include "fem/body.hpp"
-#include "mesh/cap_mesher.hpp"
-#include "mpm/body_forces.hpp"
-#include "mpm/rules.hpp"
-#include "mpm/stepper.hpp"
+#include "validation/shell_over_plate.hpp"
 
 namespace snapjump {
 namespace {
@@ -24,23 +20,13 @@ namespace {
 // The default popper's shell at the default preset's mesh and grid (sqrt(hR)/2 elements, one
 // quadratic element through h, cells of 0.025 R), its rim lowered at 0.05 m/s onto the plate.
 TEST(ShellOnPlate, ForceAgainstIndentationFollowsTheContactSolver) {
-  const double R = 0.030, h = 0.002, E = 1.2e6, nu = 0.45, rho = 1160.0;
-  const double dx = 0.025 * R, v0 = 0.05;
-  auto m = mesh::make_cap_mesh({R, h, 80.0 * std::numbers::pi / 180, std::sqrt(h * R) / 2, 1});
-  const double lowest = *std::min_element(m.nodes.z.begin(), m.nodes.z.end());
-  mesh::translate_z(m, 2.0 * dx - lowest);
-  const fem::Body shell(m, fem::Material::from_young(E, nu, rho));
-  mpm::BodyForces forces(shell, 0.0);
-  // Light damping keeps the contact's ringing down; the loading is slow against the shell's
-  // waves (0.05 m/s against about 30 m/s), so the curve is the quasi-static one.
-  mpm::Stepper s(mpm::particles_of(shell), forces,
-                 {shell.stable_time_step(0.4), dx, 0.5, 0.05 * std::sqrt(E / rho) / R});
-  mpm::RigidBody rim;  // moves at v0 whatever the shell does
-  rim.mass = 1e9;
+  using P = testing::ShellOverPlate;
+  const double R = P::R, h = P::h, nu = P::nu, E = P::E, dx = P::dx, v0 = 0.05;
+  P setup(0.3);
+  auto& s = *setup.stepper;
+  auto& rim = setup.rim;
+  auto& plate = *setup.plate;
   rim.vz = -v0;
-  s.add_rule(std::make_unique<mpm::ClampRule>(rim));
-  auto& plate = dynamic_cast<mpm::PlateRule&>(s.add_rule(std::make_unique<mpm::PlateRule>(0.3)));
-  s.add_rigid_body(rim);
 
   struct Sample {
     double lowered, F;  // rim lowered since the start [m], plate force (0.5 ms mean) [N]

@@ -1,0 +1,56 @@
+// The default popper's shell hanging apex-down from its clamped rim a little above the rigid
+// plate, at the default preset's mesh and grid (sqrt(hR)/2 elements, one quadratic element
+// through h, cells of 0.025 R). The rim is a rigid body of huge mass: it moves at whatever speed
+// the test sets, whatever the shell does. Shared by the shell-on-plate validations.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+
+#include "fem/body.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/rules.hpp"
+#include "mpm/stepper.hpp"
+
+namespace snapjump::testing {
+
+struct ShellOverPlate {
+  static constexpr double R = 0.030, h = 0.002, E = 1.2e6, nu = 0.45, rho = 1160.0;
+  static constexpr double dx = 0.025 * R;
+  static constexpr double gap = 2.0 * dx;  // apex height above the plate at the start [m]
+
+  explicit ShellOverPlate(double mu) {
+    auto m = mesh::make_cap_mesh({R, h, 80.0 * std::numbers::pi / 180, std::sqrt(h * R) / 2, 1});
+    const auto lowest = std::min_element(m.nodes.z.begin(), m.nodes.z.end());
+    apex = static_cast<std::size_t>(lowest - m.nodes.z.begin());
+    mesh::translate_z(m, gap - *lowest);
+    shell = std::make_unique<fem::Body>(m, fem::Material::from_young(E, nu, rho));
+    forces = std::make_unique<mpm::BodyForces>(*shell, 0.0);
+    // Light damping keeps the contact's ringing down; the rim moves slowly against the shell's
+    // waves (centimetres per second against about 30 m/s), so the states are quasi-static.
+    stepper = std::make_unique<mpm::Stepper>(
+        mpm::particles_of(*shell), *forces,
+        mpm::StepperOptions{shell->stable_time_step(0.4), dx, 0.5, 0.05 * std::sqrt(E / rho) / R});
+    rim.mass = 1e9;
+    stepper->add_rule(std::make_unique<mpm::ClampRule>(rim));
+    plate = &dynamic_cast<mpm::PlateRule&>(stepper->add_rule(std::make_unique<mpm::PlateRule>(mu)));
+    stepper->add_rigid_body(rim);
+  }
+  ShellOverPlate(const ShellOverPlate&) = delete;  // the stepper holds the rim's address
+  ShellOverPlate& operator=(const ShellOverPlate&) = delete;
+
+  // Height of the shell's outer apex above the plate [m].
+  [[nodiscard]] double apex_height() const { return stepper->particles().x.z[apex]; }
+
+  std::unique_ptr<fem::Body> shell;
+  std::unique_ptr<mpm::BodyForces> forces;
+  std::unique_ptr<mpm::Stepper> stepper;
+  mpm::RigidBody rim;
+  mpm::PlateRule* plate = nullptr;
+  std::size_t apex = 0;  // particle at the outer apex
+};
+
+}  // namespace snapjump::testing
