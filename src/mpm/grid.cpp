@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -14,11 +15,28 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 }
 
 constexpr std::int64_t kOffset = std::int64_t{1} << 20;  // 21 bits per axis
+constexpr int kCubeShift = 2;  // a task's cube is 2^kCubeShift blocks on a side
 
 std::uint64_t key(std::int64_t bx, std::int64_t by, std::int64_t bz) {
   return (static_cast<std::uint64_t>(bx + kOffset) << 42) |
          (static_cast<std::uint64_t>(by + kOffset) << 21) |
          static_cast<std::uint64_t>(bz + kOffset);
+}
+
+// Interleaves the low 21 bits of the three (offset) coordinates: z-order of the blocks.
+std::uint64_t morton_key(const std::array<std::int64_t, 3>& b) {
+  const auto spread = [](std::uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+  };
+  return spread(static_cast<std::uint64_t>(b[0] + kOffset)) << 2 |
+         spread(static_cast<std::uint64_t>(b[1] + kOffset)) << 1 |
+         spread(static_cast<std::uint64_t>(b[2] + kOffset));
 }
 
 }  // namespace
@@ -52,8 +70,10 @@ void SparseGrid::rebuild(const mesh::Points& x) {
   const double inv_dx = 1.0 / dx_;
   auto& keys = scratch_keys_;
   auto& blocks = scratch_blocks_;
+  auto& reach = scratch_reach_;
   keys.resize(np);
   blocks.resize(np);
+  reach.resize(np);
   local_.resize(np);
   bool same = home_key_.size() == np && !block_coords_.empty();
   for (std::size_t p = 0; p < np; ++p) {
@@ -69,34 +89,82 @@ void SparseGrid::rebuild(const mesh::Points& x) {
       local_[p][d] = static_cast<std::uint8_t>(b[d] - blocks[p][d] * kBlock);
     }
     keys[p] = key(blocks[p][0], blocks[p][1], blocks[p][2]);
-    same = same && keys[p] == home_key_[p];
+    // Bit d set: the stencil reaches into the next block along axis d (local index 2 or 3).
+    reach[p] = static_cast<std::uint8_t>((local_[p][0] >= kBlock - 2 ? 1 : 0) |
+                                         (local_[p][1] >= kBlock - 2 ? 2 : 0) |
+                                         (local_[p][2] >= kBlock - 2 ? 4 : 0));
+    same = same && keys[p] == home_key_[p] && reach[p] == home_reach_[p];
   }
   if (!same) {
     block_index_.clear();
     block_coords_.clear();
     home_.resize(np);
-    // Home blocks first, in order of first appearance.
-    std::vector<int> home_block;  // home index -> block id
-    std::unordered_map<int, int> home_of_block;
+    // Home blocks, in order of first appearance.
+    std::vector<int> first_block;  // -> block id
+    std::unordered_map<int, int> first_of_block;
     for (std::size_t p = 0; p < np; ++p) {
       const int id = block_id(blocks[p][0], blocks[p][1], blocks[p][2]);
       const auto [it, inserted] =
-          home_of_block.try_emplace(id, static_cast<int>(home_block.size()));
-      if (inserted) home_block.push_back(id);
+          first_of_block.try_emplace(id, static_cast<int>(first_block.size()));
+      if (inserted) first_block.push_back(id);
       home_[p] = it->second;
     }
-    // The +x, +y, +z neighbours that stencils may reach.
-    const std::size_t nh = home_block.size();
+    // Renumbered along a Morton curve of their coordinates, so that homes near each other in
+    // space are near each other in the order of the transfers (and share cached nodes).
+    const std::size_t nh = first_block.size();
+    std::vector<std::pair<std::uint64_t, int>> by_curve(nh);
+    for (std::size_t h = 0; h < nh; ++h) {
+      by_curve[h] = {morton_key(block_coords_[first_block[h]]), static_cast<int>(h)};
+    }
+    std::sort(by_curve.begin(), by_curve.end());
+    std::vector<int> renumber(nh);
+    std::vector<int> home_block(nh);
+    for (std::size_t h = 0; h < nh; ++h) {
+      renumber[by_curve[h].second] = static_cast<int>(h);
+      home_block[h] = first_block[by_curve[h].second];
+    }
+    // The neighbour blocks that some particle of each home reaches (bit nb of needed[h]): every
+    // nb whose axes are among those a particle's stencil crosses.
+    std::vector<std::uint8_t> needed(nh, 0);
+    for (std::size_t p = 0; p < np; ++p) {
+      home_[p] = renumber[home_[p]];
+      for (int nb = 0; nb < 8; ++nb) {
+        if ((nb & ~reach[p]) == 0) needed[home_[p]] |= static_cast<std::uint8_t>(1 << nb);
+      }
+    }
+    // The +x, +y, +z neighbours that stencils reach, and the tasks of the parallel transfer:
+    // one task per cube of 4 x 4 x 4 home blocks, coloured by the parity of the cube's
+    // coordinates. A task writes into its cube and one block beyond on the + sides, so two
+    // tasks of one colour (a cube apart at least) never write the same node. Cubes of 4 blocks
+    // rather than single blocks: most nodes are then written within one task, while cached.
     neighbours_.resize(nh);
     for (auto& c : colour_homes_) c.clear();
+    for (auto& c : colour_tasks_) c.assign(1, 0);
+    std::array<std::array<std::int64_t, 3>, 8> last_cube{};
     for (std::size_t h = 0; h < nh; ++h) {
       const auto b = block_coords_[home_block[h]];
       for (int nb = 0; nb < 8; ++nb) {
         neighbours_[h][nb] =
-            block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1));
+            (needed[h] >> nb & 1) != 0
+                ? block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1))
+                : -1;  // no stencil goes there
       }
-      const int colour = static_cast<int>((b[0] & 1) | ((b[1] & 1) << 1) | ((b[2] & 1) << 2));
-      colour_homes_[colour].push_back(static_cast<int>(h));
+      const std::array<std::int64_t, 3> cube = {b[0] >> kCubeShift, b[1] >> kCubeShift,
+                                                b[2] >> kCubeShift};
+      const int colour =
+          static_cast<int>((cube[0] & 1) | ((cube[1] & 1) << 1) | ((cube[2] & 1) << 2));
+      auto& homes = colour_homes_[colour];
+      // Homes of one cube are consecutive on the Morton curve.
+      if (!homes.empty() && cube != last_cube[colour]) {
+        colour_tasks_[colour].push_back(static_cast<int>(homes.size()));
+      }
+      homes.push_back(static_cast<int>(h));
+      last_cube[colour] = cube;
+    }
+    for (int c = 0; c < 8; ++c) {
+      if (!colour_homes_[c].empty()) {
+        colour_tasks_[c].push_back(static_cast<int>(colour_homes_[c].size()));
+      }
     }
     // Particles grouped by home block (counting sort).
     start_.assign(nh + 1, 0);
@@ -106,6 +174,7 @@ void SparseGrid::rebuild(const mesh::Points& x) {
     std::vector<int> fill(start_.begin(), start_.end() - 1);
     for (std::size_t p = 0; p < np; ++p) order_[fill[home_[p]]++] = static_cast<int>(p);
     home_key_ = keys;
+    home_reach_ = reach;
   }
 
   const std::size_t nn = block_coords_.size() * kBlockNodes;

@@ -25,7 +25,8 @@ class SparseGrid {
 
   // Activates the blocks covered by the quadratic B-spline stencils of the particles at x, zeroes
   // the node data and groups the particles by the block of their stencil's first node. When no
-  // particle has changed block since the last call, the blocks and groups are kept.
+  // particle has changed block, nor reaches into other neighbour blocks, since the last call, the
+  // blocks and groups are kept.
   void rebuild(const mesh::Points& x);
 
   // --- nodes ---------------------------------------------------------------------------------
@@ -51,18 +52,17 @@ class SparseGrid {
   [[nodiscard]] const std::array<std::uint8_t, 3>& local_of(std::size_t p) const {
     return local_[p];
   }
-  // Node index of stencil node (i, j, k) in 0..2 of particle p.
-  [[nodiscard]] std::size_t stencil_node(std::size_t p, int i, int j, int k) const {
-    const auto& l = local_[p];
-    const int li = l[0] + i, lj = l[1] + j, lk = l[2] + k;
-    const int nb = (li >= kBlock ? 1 : 0) | (lj >= kBlock ? 2 : 0) | (lk >= kBlock ? 4 : 0);
-    const std::size_t block = static_cast<std::size_t>(neighbours_[home_[p]][nb]);
-    return block * kBlockNodes +
-           static_cast<std::size_t>(((li & 3) * kBlock + (lj & 3)) * kBlock + (lk & 3));
-  }
-  // Home blocks of one parity colour (0..7); particles of two home blocks of one colour never
-  // write to the same node, so each colour can run in parallel.
+  // Block ids of home block h and of its neighbours: entry nb (bit 0: +x, bit 1: +y, bit 2: +z)
+  // is the block that holds the stencil nodes whose local index overflows along those axes.
+  [[nodiscard]] const std::array<int, 8>& neighbours_of_home(int h) const { return neighbours_[h]; }
+  // Home blocks of one colour (0..7): the parity of their cube of 4 x 4 x 4 blocks, see below.
   [[nodiscard]] const std::vector<int>& homes_of_colour(int c) const { return colour_homes_[c]; }
+  // The tasks of colour c: task k is homes_of_colour(c)[tasks[k] .. tasks[k + 1]), the homes of
+  // one cube of 4 x 4 x 4 blocks. Tasks of one colour never write the same node, so they can run
+  // in parallel; the homes of a task lie together along the Morton curve.
+  [[nodiscard]] const std::vector<int>& tasks_of_colour(int c) const { return colour_tasks_[c]; }
+  // All particles, grouped by home block, homes in Morton order.
+  [[nodiscard]] std::span<const int> particles_in_home_order() const { return order_; }
   // Particles whose home is block h (an index into the home blocks).
   [[nodiscard]] std::span<const int> particles_of(int h) const {
     return {order_.data() + start_[h], order_.data() + start_[h + 1]};
@@ -74,7 +74,9 @@ class SparseGrid {
 
   double dx_;
   std::vector<std::uint64_t> home_key_;      // per particle: key of its home block, last rebuild
+  std::vector<std::uint8_t> home_reach_;     // per particle: blocks its stencil crossed into
   std::vector<std::uint64_t> scratch_keys_;  // reused between calls
+  std::vector<std::uint8_t> scratch_reach_;
   std::vector<std::array<std::int64_t, 3>> scratch_blocks_;
   std::unordered_map<std::uint64_t, int> block_index_;
   std::vector<std::array<std::int64_t, 3>> block_coords_;
@@ -83,6 +85,7 @@ class SparseGrid {
   std::vector<std::array<std::uint8_t, 3>> local_;
   std::vector<int> order_, start_;  // particles sorted by home block
   std::array<std::vector<int>, 8> colour_homes_;
+  std::array<std::vector<int>, 8> colour_tasks_;  // offsets into colour_homes_
 };
 
 // Quadratic B-spline weights of a particle at x (in grid units) with respect to the nodes

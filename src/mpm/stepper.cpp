@@ -11,27 +11,41 @@ namespace snapjump::mpm {
 
 namespace {
 
-// Calls visit(node, w, dx_a, dy_b, dz_c) for the 27 grid nodes of particle i's quadratic B-spline
-// stencil: the node index, the weight and the node's offset from the particle.
-template <typename Visit>
-inline void for_each_stencil_node(const SparseGrid& grid, const mesh::Points& x, std::size_t i,
-                                  double dx, Visit&& visit) {
-  const double inv_dx = 1.0 / dx;
-  const auto wx = bspline_weights(x.x[i] * inv_dx);
-  const auto wy = bspline_weights(x.y[i] * inv_dx);
-  const auto wz = bspline_weights(x.z[i] * inv_dx);
-  for (int a = 0; a < 3; ++a) {
-    const double dxa = (static_cast<double>(wx.base + a)) * dx - x.x[i];
-    for (int b = 0; b < 3; ++b) {
-      const double dyb = (static_cast<double>(wy.base + b)) * dx - x.y[i];
-      const double wab = wx.w[a] * wy.w[b];
-      for (int c = 0; c < 3; ++c) {
-        const double dzc = (static_cast<double>(wz.base + c)) * dx - x.z[i];
-        visit(grid.stencil_node(i, a, b, c), wab * wz.w[c], dxa, dyb, dzc);
+// The 27 grid nodes of a particle's quadratic B-spline stencil, axis by axis: the weight of each
+// of the three nodes along an axis, its offset from the particle, and where it lies in the grid
+// (which neighbour of the home block, and the offset within that block). A node's index is
+// block * kBlockNodes + off[0][a] + off[1][b] + off[2][c], block = neighbours[nb[0][a] | nb[1][b]
+// | nb[2][c]]: the index arithmetic is done once per axis, not once per node.
+struct Stencil {
+  double w[3][3];
+  double d[3][3];
+  int nb[3][3];
+  int off[3][3];
+  const std::array<int, 8>* neighbours;
+
+  Stencil(const SparseGrid& grid, const mesh::Points& x, std::size_t i, double dx) {
+    const double inv_dx = 1.0 / dx;
+    const double xi[3] = {x.x[i], x.y[i], x.z[i]};
+    const auto& local = grid.local_of(i);
+    constexpr int kStride[3] = {kBlock * kBlock, kBlock, 1};
+    for (int ax = 0; ax < 3; ++ax) {
+      const auto wts = bspline_weights(xi[ax] * inv_dx);
+      for (int a = 0; a < 3; ++a) {
+        const int l = local[ax] + a;
+        w[ax][a] = wts.w[a];
+        d[ax][a] = static_cast<double>(wts.base + a) * dx - xi[ax];
+        nb[ax][a] = l >= kBlock ? (1 << ax) : 0;
+        off[ax][a] = (l & (kBlock - 1)) * kStride[ax];
       }
     }
+    neighbours = &grid.neighbours_of_home(grid.home_of(i));
   }
-}
+  [[nodiscard]] std::size_t node(int a, int b, int c) const {
+    const int block = (*neighbours)[nb[0][a] | nb[1][b] | nb[2][c]];
+    return static_cast<std::size_t>(block) * kBlockNodes +
+           static_cast<std::size_t>(off[0][a] + off[1][b] + off[2][c]);
+  }
+};
 
 }  // namespace
 
@@ -110,30 +124,53 @@ void Stepper::update_particle_velocities() {
 
 void Stepper::particle_to_grid() {
   grid_.rebuild(p_.x);
-  const double dx = options_.dx;
   for (int colour = 0; colour < 8; ++colour) {
     const auto& homes = grid_.homes_of_colour(colour);
-    const int nh = static_cast<int>(homes.size());
-#pragma omp parallel for schedule(dynamic, 4)
-    for (int k = 0; k < nh; ++k) {
-      for (const int i : grid_.particles_of(homes[k])) {
-        const double m = p_.mass[i];
-        const double* C = &p_.C[9 * static_cast<std::size_t>(i)];
-        const double vx = p_.v.x[i], vy = p_.v.y[i], vz = p_.v.z[i];
-        const std::uint8_t tag = p_.tags[i];
-        for_each_stencil_node(grid_, p_.x, static_cast<std::size_t>(i), dx,
-                              [&](std::size_t node, double w, double dxa, double dyb, double dzc) {
-                                const double mw = m * w;
-                                auto& g = grid_.nodes[node];
-                                g.m += mw;
-                                g.px += mw * (vx + C[0] * dxa + C[1] * dyb + C[2] * dzc);
-                                g.py += mw * (vy + C[3] * dxa + C[4] * dyb + C[5] * dzc);
-                                g.pz += mw * (vz + C[6] * dxa + C[7] * dyb + C[8] * dzc);
-                                if (tag != 0) {  // most particles carry none
-                                  grid_.tags[node] |= tag;
-                                  grid_.block_tags[node / kBlockNodes] |= tag;
-                                }
-                              });
+    const auto& tasks = grid_.tasks_of_colour(colour);
+    const int nt = static_cast<int>(tasks.size()) - 1;
+#pragma omp parallel for schedule(dynamic, 2)
+    for (int task = 0; task < nt; ++task) {
+      for (int k = tasks[task]; k < tasks[task + 1]; ++k) {
+        for (const int i : grid_.particles_of(homes[k])) scatter(static_cast<std::size_t>(i));
+      }
+    }
+  }
+}
+
+// Adds particle n's mass and APIC momentum to the 27 nodes of its stencil (and its tag).
+void Stepper::scatter(std::size_t n) {
+  const double dx = options_.dx;
+  const Stencil st(grid_, p_.x, n, dx);
+  const double m = p_.mass[n];
+  const double* C = &p_.C[9 * n];
+  const double v[3] = {p_.v.x[n], p_.v.y[n], p_.v.z[n]};
+  // The APIC velocity v + C (x_node - x_p), built up axis by axis.
+  for (int a = 0; a < 3; ++a) {
+    const double dxa = st.d[0][a];
+    const double ua[3] = {v[0] + C[0] * dxa, v[1] + C[3] * dxa, v[2] + C[6] * dxa};
+    for (int b = 0; b < 3; ++b) {
+      const double dyb = st.d[1][b];
+      const double uab[3] = {ua[0] + C[1] * dyb, ua[1] + C[4] * dyb, ua[2] + C[7] * dyb};
+      const double mab = m * st.w[0][a] * st.w[1][b];
+      for (int c = 0; c < 3; ++c) {
+        const double dzc = st.d[2][c];
+        const double mw = mab * st.w[2][c];
+        auto& g = grid_.nodes[st.node(a, b, c)];
+        g.m += mw;
+        g.px += mw * (uab[0] + C[2] * dzc);
+        g.py += mw * (uab[1] + C[5] * dzc);
+        g.pz += mw * (uab[2] + C[8] * dzc);
+      }
+    }
+  }
+  if (const std::uint8_t tag = p_.tags[n]; tag != 0) {  // most particles carry none
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t node = st.node(a, b, c);
+          grid_.tags[node] |= tag;
+          grid_.block_tags[node / kBlockNodes] |= tag;
+        }
       }
     }
   }
@@ -150,21 +187,43 @@ void Stepper::grid_to_particle() {
   const std::size_t n = p_.size();
   double vmax2 = 0.0;
   std::atomic<long> bad{-1};
+  // In the grid's home order: particles that share nodes come one after another.
+  const auto order = grid_.particles_in_home_order();
 #pragma omp parallel for schedule(static) reduction(max : vmax2)
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(order[k]);
+    const Stencil st(grid_, p_.x, i, dx);
+    // v = sum w v_node; B = sum w v_node d^T, d = x_node - x_p, summed axis by axis: column z
+    // per node, column y per (a, b) row, column x per a plane.
     double v[3] = {0, 0, 0};
     double B[9] = {};
-    for_each_stencil_node(grid_, p_.x, i, dx,
-                          [&](std::size_t node, double w, double dxa, double dyb, double dzc) {
-                            const auto& g = grid_.nodes[node];
-                            const double inv_m = 1.0 / g.m;
-                            const double gv[3] = {g.px * inv_m, g.py * inv_m, g.pz * inv_m};
-                            const double d[3] = {dxa, dyb, dzc};
-                            for (int r = 0; r < 3; ++r) {
-                              v[r] += w * gv[r];
-                              for (int c = 0; c < 3; ++c) B[3 * r + c] += w * gv[r] * d[c];
-                            }
-                          });
+    for (int a = 0; a < 3; ++a) {
+      double sa[3] = {0, 0, 0};
+      for (int b = 0; b < 3; ++b) {
+        double sab[3] = {0, 0, 0};
+        const double wab = st.w[0][a] * st.w[1][b];
+        for (int c = 0; c < 3; ++c) {
+          const auto& g = grid_.nodes[st.node(a, b, c)];
+          const double s = wab * st.w[2][c] / g.m;
+          const double q[3] = {s * g.px, s * g.py, s * g.pz};
+          const double dzc = st.d[2][c];
+          for (int r = 0; r < 3; ++r) {
+            sab[r] += q[r];
+            B[3 * r + 2] += q[r] * dzc;
+          }
+        }
+        const double dyb = st.d[1][b];
+        for (int r = 0; r < 3; ++r) {
+          sa[r] += sab[r];
+          B[3 * r + 1] += sab[r] * dyb;
+        }
+      }
+      const double dxa = st.d[0][a];
+      for (int r = 0; r < 3; ++r) {
+        v[r] += sa[r];
+        B[3 * r] += sa[r] * dxa;
+      }
+    }
     p_.v.x[i] = v[0];
     p_.v.y[i] = v[1];
     p_.v.z[i] = v[2];

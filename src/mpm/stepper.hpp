@@ -100,6 +100,7 @@ class Stepper {
   [[nodiscard]] double cfl() const { return max_speed_ * options_.dt / options_.dx; }
 
  private:
+  void scatter(std::size_t n);  // one particle's share of particle_to_grid()
   Particles p_;
   ForceProvider& forces_;
   StepperOptions options_;
