@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -19,6 +20,19 @@ double interpolate(std::span<const double> t, std::span<const double> y, double 
   const auto i = static_cast<std::size_t>(it - t.begin());  // t[i - 1] <= tq < t[i]
   const double s = (tq - t[i - 1]) / (t[i] - t[i - 1]);
   return y[i - 1] + s * (y[i] - y[i - 1]);
+}
+
+// How much higher z goes after the last sample, from the parabola through the last three samples
+// (velocities from the last two intervals, the deceleration between them); infinity when z is not
+// slowing down. Near the top of a flight this is a tiny fraction of the jump.
+double rise_left(std::span<const double> t, std::span<const double> z) {
+  const std::size_t n = z.size();
+  if (n < 3) return std::numeric_limits<double>::infinity();
+  const double v1 = (z[n - 2] - z[n - 3]) / (t[n - 2] - t[n - 3]);
+  const double v2 = (z[n - 1] - z[n - 2]) / (t[n - 1] - t[n - 2]);
+  const double decel = (v1 - v2) / (0.5 * (t[n - 1] - t[n - 3]));
+  if (!(decel > 0.0)) return std::numeric_limits<double>::infinity();
+  return v2 > 0.0 ? v2 * v2 / (2.0 * decel) : 0.0;
 }
 
 // Time where the segment (i - 1, i) crosses `level`, assuming y[i - 1] and y[i] lie on either side.
@@ -298,7 +312,8 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     const auto top = std::max_element(z.begin(), z.end());
     a.H = *top;
     if (a.H_l) a.H_s = *a.H - *a.H_l;
-    if (a.t_launch && static_cast<std::size_t>(top - z.begin()) == n - 1) {
+    if (a.t_launch && static_cast<std::size_t>(top - z.begin()) == n - 1 &&
+        rise_left(t, z) > 0.01 * (a.H_s ? *a.H_s : *a.H)) {
       a.warnings.push_back(
           "z is highest at the last sample: the record may end before the top of the flight, so H "
           "and H_s are lower bounds");

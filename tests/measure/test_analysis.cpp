@@ -318,6 +318,17 @@ TEST(Analysis, RecordEndingSoonAfterLaunch) {
   EXPECT_TRUE(has_warning(a, "z is highest at the last sample"));
 }
 
+// A record that stops at the top of the flight (as `snapjump run` does), its last sample the
+// highest: H is the jump's height, not a lower bound.
+TEST(Analysis, RecordEndingAtTheTopOfTheFlight) {
+  Spec spec;
+  spec.t_end = kT1 + kV0 / g;  // the apex of z_jump
+  const auto a = analyze(make(spec), with_R());
+  ASSERT_TRUE(a.H);
+  EXPECT_NEAR(*a.H, kV0 * kT1 + 0.5 * kV0 * kV0 / g, 1e-9);
+  EXPECT_FALSE(has_warning(a, "z is highest at the last sample"));
+}
+
 // Gaussian noise of standard deviation 1% F* (Box-Muller on std::mt19937, which the standard
 // specifies bit for bit, so the series is the same everywhere).
 TEST(Analysis, NoiseRobustness) {
