@@ -1,6 +1,7 @@
 # The two commands of README.md:
 #   make run    installs what is missing, builds (Release) and runs the main job
-#   make test   installs what is missing, builds (Release) and runs the test suite
+#   make test   installs what is missing, builds (Release) and runs the test suite (one OpenMP
+#               thread per test, as many tests at a time as there are cores)
 # and, outside the suite, make validate-long (the long validations, label `long`).
 BUILD ?= build
 JOBS ?= $(shell nproc)
@@ -20,7 +21,7 @@ run: build
 	$(BUILD)/snapjump run
 
 test: build
-	cd $(BUILD) && ctest -LE long --output-on-failure -j $(JOBS) --timeout 900
+	cd $(BUILD) && OMP_NUM_THREADS=1 ctest -LE long --output-on-failure -j $(JOBS) --timeout 900
 
 validate-long: build
 	$(BUILD)/snapjump_long_validation

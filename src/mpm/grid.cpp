@@ -15,6 +15,16 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 }
 
 constexpr std::int64_t kOffset = std::int64_t{1} << 20;  // 21 bits per axis
+// kSubsets[r]: bit nb set for every nb whose axis bits are among those of r.
+constexpr std::array<std::uint8_t, 8> kSubsets = [] {
+  std::array<std::uint8_t, 8> t{};
+  for (int r = 0; r < 8; ++r) {
+    for (int nb = 0; nb < 8; ++nb) {
+      if ((nb & ~r) == 0) t[r] = static_cast<std::uint8_t>(t[r] | (1 << nb));
+    }
+  }
+  return t;
+}();
 constexpr int kCubeShift = 2;  // a task's cube is 2^kCubeShift blocks on a side
 
 std::uint64_t key(std::int64_t bx, std::int64_t by, std::int64_t bz) {
@@ -99,38 +109,40 @@ void SparseGrid::rebuild(const mesh::Points& x) {
     block_index_.clear();
     block_coords_.clear();
     home_.resize(np);
-    // Home blocks, in order of first appearance.
-    std::vector<int> first_block;  // -> block id
-    std::unordered_map<int, int> first_of_block;
-    for (std::size_t p = 0; p < np; ++p) {
-      const int id = block_id(blocks[p][0], blocks[p][1], blocks[p][2]);
-      const auto [it, inserted] =
-          first_of_block.try_emplace(id, static_cast<int>(first_block.size()));
-      if (inserted) first_block.push_back(id);
-      home_[p] = it->second;
+    // Home blocks, in order of first appearance: the first blocks made, so a home's number is
+    // its block id. The particles are visited in the last rebuild's order, in which neighbours
+    // follow each other, and a particle in the same block as the one before needs no lookup.
+    const bool reuse_order = order_.size() == np;
+    std::uint64_t last_key = 0;
+    int last_id = -1;
+    for (std::size_t k = 0; k < np; ++k) {
+      const std::size_t p = reuse_order ? static_cast<std::size_t>(order_[k]) : k;
+      if (last_id < 0 || keys[p] != last_key) {
+        last_id = block_id(blocks[p][0], blocks[p][1], blocks[p][2]);
+        last_key = keys[p];
+      }
+      home_[p] = last_id;
     }
     // Renumbered along a Morton curve of their coordinates, so that homes near each other in
     // space are near each other in the order of the transfers (and share cached nodes).
-    const std::size_t nh = first_block.size();
+    const std::size_t nh = block_coords_.size();
     std::vector<std::pair<std::uint64_t, int>> by_curve(nh);
     for (std::size_t h = 0; h < nh; ++h) {
-      by_curve[h] = {morton_key(block_coords_[first_block[h]]), static_cast<int>(h)};
+      by_curve[h] = {morton_key(block_coords_[h]), static_cast<int>(h)};
     }
     std::sort(by_curve.begin(), by_curve.end());
     std::vector<int> renumber(nh);
     std::vector<int> home_block(nh);
     for (std::size_t h = 0; h < nh; ++h) {
       renumber[by_curve[h].second] = static_cast<int>(h);
-      home_block[h] = first_block[by_curve[h].second];
+      home_block[h] = by_curve[h].second;
     }
     // The neighbour blocks that some particle of each home reaches (bit nb of needed[h]): every
     // nb whose axes are among those a particle's stencil crosses.
     std::vector<std::uint8_t> needed(nh, 0);
     for (std::size_t p = 0; p < np; ++p) {
       home_[p] = renumber[home_[p]];
-      for (int nb = 0; nb < 8; ++nb) {
-        if ((nb & ~reach[p]) == 0) needed[home_[p]] |= static_cast<std::uint8_t>(1 << nb);
-      }
+      needed[home_[p]] |= kSubsets[reach[p]];
     }
     // The +x, +y, +z neighbours that stencils reach, and the tasks of the parallel transfer:
     // one task per cube of 4 x 4 x 4 home blocks, coloured by the parity of the cube's

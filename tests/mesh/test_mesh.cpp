@@ -1,5 +1,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <filesystem>
@@ -56,6 +57,17 @@ TEST(CapMesh, NodeSetsLieWhereTheyShould) {
     EXPECT_GE(radius(m, static_cast<int>(a)), kR - kH / 2 - 1e-12);
     EXPECT_LE(polar(m, static_cast<int>(a)), kPhi + 1e-9);
   }
+}
+
+// gmsh sets the OpenMP thread count to its own option when it starts; meshing must leave the
+// caller's count as it was (else the simulation after it runs on one thread).
+TEST(CapMesh, MeshingKeepsTheOpenMpThreadCount) {
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(3);
+  const auto m = make_cap_mesh({kR, kH, kPhi, 6e-3, 1});
+  EXPECT_EQ(omp_get_max_threads(), 3);
+  omp_set_num_threads(before);
+  EXPECT_FALSE(m.tets.empty());
 }
 
 TEST(CapMesh, LayersThroughTheThickness) {
