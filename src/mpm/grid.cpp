@@ -110,13 +110,13 @@ void SparseGrid::rebuild(const mesh::Points& x) {
     block_coords_.clear();
     home_.resize(np);
     // Home blocks, in order of first appearance: the first blocks made, so a home's number is
-    // its block id. The particles are visited in the last rebuild's order, in which neighbours
-    // follow each other, and a particle in the same block as the one before needs no lookup.
-    const bool reuse_order = order_.size() == np;
+    // its block id. Block ids (the order of the blocks in memory, and of the rules' sums over
+    // them) depend on the particles' positions only, never on earlier steps, so a resumed run
+    // repeats a straight one bit for bit. A particle in the same block as the one before needs
+    // no lookup.
     std::uint64_t last_key = 0;
     int last_id = -1;
-    for (std::size_t k = 0; k < np; ++k) {
-      const std::size_t p = reuse_order ? static_cast<std::size_t>(order_[k]) : k;
+    for (std::size_t p = 0; p < np; ++p) {
       if (last_id < 0 || keys[p] != last_key) {
         last_id = block_id(blocks[p][0], blocks[p][1], blocks[p][2]);
         last_key = keys[p];
