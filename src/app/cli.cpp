@@ -220,6 +220,7 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
   row("H   highest container position", a.H, 1e-3, "mm");
   row("H_l container position at the onset", a.H_l, 1e-3, "mm");
   row("H_s = H - H_l", a.H_s, 1e-3, "mm");
+  row("delta_p at the onset", a.delta_p_onset, 1e3, "kPa");
   if (c) {
     row("alpha_r = r* / sqrt(h R)", a.alpha_r, 1.0, "");
     row("alpha_e = e* / h", a.alpha_e, 1.0, "");

@@ -184,6 +184,10 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   show("H_l lift to the onset", analysis.H_l, 1e-3, "mm", range(prediction.H_l, 1e-3));
   show("H_s flight from the snap", analysis.H_s, 1e-3, "mm", range(prediction.H_s, 1e-3));
   show("H   jump height", analysis.H, 1e-3, "mm", range(prediction.H, 1e-3));
+  if (analysis.delta_p_onset) {
+    fmt::print(out, "  {:<28} {:>10.4g}  kPa  (suction left when the apex comes down)\n",
+               "delta_p at the onset", *analysis.delta_p_onset / 1e3);
+  }
   for (const auto& w : analysis.warnings) fmt::print(out, "  note        {}\n", w);
   return analysis;
 }

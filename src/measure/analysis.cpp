@@ -266,6 +266,7 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     if (series.has(kContactRadius)) a.r_star = interpolate(t, series.column(kContactRadius), t_on);
     if (series.has(kIndentation)) a.e_star = interpolate(t, series.column(kIndentation), t_on);
     if (series.has(kHeight)) a.H_l = interpolate(t, series.column(kHeight), t_on);
+    if (series.has(kPressure)) a.delta_p_onset = interpolate(t, series.column(kPressure), t_on);
 
     // The snap lasts until the popper leaves the plate or the shell goes back to a ring contact:
     // the apex again above the onset level while the plate still pushes (after a snap without a
@@ -379,6 +380,7 @@ nlohmann::json to_json(const Analysis& a) {
       {"H", a.H, "m", "H, maximum height of the container"},
       {"H_l", a.H_l, "m", "H_l, container height at the onset"},
       {"H_s", a.H_s, "m", "H_s = H - H_l"},
+      {"delta_p_onset", a.delta_p_onset, "Pa", "delta_p at the onset"},
       {"alpha_r", a.alpha_r, "1", "r* / sqrt(h R)"},
       {"alpha_e", a.alpha_e, "1", "e* / h"},
       {"alpha_F", a.alpha_F, "1", "F* / (E h^3 / R)"},

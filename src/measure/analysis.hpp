@@ -50,6 +50,9 @@ struct Analysis {
   // Heights of the container.
   std::optional<double> H;    // max z [m]
   std::optional<double> H_l;  // z at the onset [m]
+  // delta_p at the onset [Pa]: the suction that still holds the dimple in when the apex comes
+  // down shares the load with the plate and lowers F* (docs/popper.md).
+  std::optional<double> delta_p_onset;
   std::optional<double> H_s;  // H - H_l [m]
   // Jump if launched, Snap if onset without launch, No snap if no onset; absent when the series
   // cannot tell (no w column or R, and no contact column).

@@ -68,6 +68,7 @@ struct Spec {
   bool with_r_e = true;
   bool with_z = true;
   bool with_contact = false;
+  bool with_dp = false;   // a delta_p column: 2 kPa falling by 10 Pa per ms
   double t_disk = 21e-3;  // contact column: ring before, disk from here
   double t_end = 150e-3;
 };
@@ -80,6 +81,7 @@ TimeSeries make(const Spec& spec) {
     names.emplace_back("r");
     names.emplace_back("e");
   }
+  if (spec.with_dp) names.emplace_back("delta_p");
   TimeSeries s(names, spec.with_contact);
   const auto n = static_cast<int>(std::lround(spec.t_end / kDt));
   std::vector<double> row;
@@ -92,6 +94,7 @@ TimeSeries make(const Spec& spec) {
       row.push_back(10e-3 - 0.2 * t);
       row.push_back(0.2 * t);
     }
+    if (spec.with_dp) row.push_back(2000.0 - 1e4 * t);
     if (spec.with_contact) {
       s.add_row(row, t >= spec.t_disk - 1e-12 ? ContactState::Disk : ContactState::Ring);
     } else {
@@ -316,6 +319,17 @@ TEST(Analysis, RecordEndingSoonAfterLaunch) {
   EXPECT_NEAR(*a.t_launch, 25.92e-3, 1e-10);
   EXPECT_TRUE(has_warning(a, "the record ends"));
   EXPECT_TRUE(has_warning(a, "z is highest at the last sample"));
+}
+
+// The suction left at the onset, read off the delta_p column when there is one.
+TEST(Analysis, PressureDifferenceAtTheOnset) {
+  Spec spec;
+  EXPECT_FALSE(analyze(make(spec), with_R()).delta_p_onset);
+  spec.with_dp = true;
+  const auto a = analyze(make(spec), with_R());
+  ASSERT_TRUE(a.t_onset);
+  ASSERT_TRUE(a.delta_p_onset);
+  EXPECT_NEAR(*a.delta_p_onset, 2000.0 - 1e4 * kOnset, 1e-6);
 }
 
 // A record that stops at the top of the flight (as `snapjump run` does), its last sample the
