@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -22,17 +23,35 @@ double interpolate(std::span<const double> t, std::span<const double> y, double 
   return y[i - 1] + s * (y[i] - y[i - 1]);
 }
 
-// How much higher z goes after the last sample, from the parabola through the last three samples
-// (velocities from the last two intervals, the deceleration between them); infinity when z is not
-// slowing down. Near the top of a flight this is a tiny fraction of the jump.
+// How much higher z goes after the last sample: a least-squares parabola through the last samples
+// (up to 21) gives the velocity at the end and the deceleration. Infinity when z is not slowing
+// down, or when the curvature is not clearly resolved (less than three standard errors, as on a
+// noisy measured record): then the caller keeps its warning.
 double rise_left(std::span<const double> t, std::span<const double> z) {
   const std::size_t n = z.size();
-  if (n < 3) return std::numeric_limits<double>::infinity();
-  const double v1 = (z[n - 2] - z[n - 3]) / (t[n - 2] - t[n - 3]);
-  const double v2 = (z[n - 1] - z[n - 2]) / (t[n - 1] - t[n - 2]);
-  const double decel = (v1 - v2) / (0.5 * (t[n - 1] - t[n - 3]));
-  if (!(decel > 0.0)) return std::numeric_limits<double>::infinity();
-  return v2 > 0.0 ? v2 * v2 / (2.0 * decel) : 0.0;
+  const std::size_t k = std::min<std::size_t>(n, 21);
+  constexpr double kUnknown = std::numeric_limits<double>::infinity();
+  if (k < 5) return kUnknown;
+  Eigen::MatrixXd X(k, 3);
+  Eigen::VectorXd y(k);
+  const double scale = t[n - 1] - t[n - k];  // tau in units of the window, for conditioning
+  if (!(scale > 0.0)) return kUnknown;
+  for (std::size_t i = 0; i < k; ++i) {
+    const std::size_t j = n - k + i;
+    const double tau = (t[j] - t[n - 1]) / scale;
+    X(static_cast<Eigen::Index>(i), 0) = 1.0;
+    X(static_cast<Eigen::Index>(i), 1) = tau;
+    X(static_cast<Eigen::Index>(i), 2) = tau * tau;
+    y(static_cast<Eigen::Index>(i)) = z[j];
+  }
+  const Eigen::Matrix3d XtX = X.transpose() * X;
+  const Eigen::Vector3d c = XtX.ldlt().solve(X.transpose() * y);
+  const double rss = (X * c - y).squaredNorm();
+  const double var_c2 = rss / static_cast<double>(k - 3) * XtX.inverse()(2, 2);
+  const double v_end = c(1) / scale;  // dz/dt at the last sample
+  const double decel = -2.0 * c(2) / (scale * scale);
+  if (!(decel > 0.0) || c(2) * c(2) <= 9.0 * var_c2) return kUnknown;
+  return v_end > 0.0 ? v_end * v_end / (2.0 * decel) : 0.0;
 }
 
 // Time where the segment (i - 1, i) crosses `level`, assuming y[i - 1] and y[i] lie on either side.

@@ -11,20 +11,31 @@ namespace snapjump::mesh {
 
 class GmshSession {
  public:
-  GmshSession() : threads_(omp_get_max_threads()) {
+  GmshSession() {
     gmsh::initialize();
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::option::setNumber("General.Verbosity", 1);
+    try {
+      gmsh::option::setNumber("General.Terminal", 0);
+      gmsh::option::setNumber("General.Verbosity", 1);
+    } catch (...) {
+      gmsh::finalize();
+      throw;  // threads_ (constructed first) still puts the thread count back
+    }
   }
-  ~GmshSession() {
-    gmsh::finalize();
-    omp_set_num_threads(threads_);
-  }
+  ~GmshSession() { gmsh::finalize(); }  // then threads_ puts the thread count back
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
 
  private:
-  int threads_;
+  // Saves the OpenMP thread count before gmsh starts and restores it when the session ends,
+  // whichever way it ends.
+  struct ThreadCount {
+    int n = omp_get_max_threads();
+    ThreadCount() = default;
+    ThreadCount(const ThreadCount&) = delete;
+    ThreadCount& operator=(const ThreadCount&) = delete;
+    ~ThreadCount() { omp_set_num_threads(n); }
+  };
+  ThreadCount threads_;
 };
 
 }  // namespace snapjump::mesh

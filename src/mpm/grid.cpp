@@ -109,11 +109,11 @@ void SparseGrid::rebuild(const mesh::Points& x) {
     block_index_.clear();
     block_coords_.clear();
     home_.resize(np);
-    // Home blocks, in order of first appearance: the first blocks made, so a home's number is
-    // its block id. Block ids (the order of the blocks in memory, and of the rules' sums over
-    // them) depend on the particles' positions only, never on earlier steps, so a resumed run
-    // repeats a straight one bit for bit. A particle in the same block as the one before needs
-    // no lookup.
+    // Home blocks, in order of first appearance: the first blocks made, so until the Morton
+    // renumbering below a home's number is its block id. Block ids (the order of the blocks in
+    // memory, and of the rules' sums over them) depend on the particles' positions only, never on
+    // earlier steps, so a resumed run repeats a straight one bit for bit. A particle in the same
+    // block as the one before needs no lookup.
     std::uint64_t last_key = 0;
     int last_id = -1;
     for (std::size_t p = 0; p < np; ++p) {

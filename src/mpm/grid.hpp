@@ -46,8 +46,9 @@ class SparseGrid {
   }
 
   // --- particles, as grouped by rebuild() ----------------------------------------------------
-  // For particle p: its home block (index into home_blocks()) and the local index (0..3) of its
-  // stencil's first node in that block, per axis.
+  // For particle p: its home (an index into the homes, numbered along the Morton curve; see
+  // neighbours_of_home) and the local index (0..3) of its stencil's first node in that block, per
+  // axis.
   [[nodiscard]] int home_of(std::size_t p) const { return home_[p]; }
   [[nodiscard]] const std::array<std::uint8_t, 3>& local_of(std::size_t p) const {
     return local_[p];
@@ -80,8 +81,9 @@ class SparseGrid {
   std::vector<std::array<std::int64_t, 3>> scratch_blocks_;
   std::unordered_map<std::uint64_t, int> block_index_;
   std::vector<std::array<std::int64_t, 3>> block_coords_;
-  std::vector<std::array<int, 8>> neighbours_;  // per home block: ids of itself and +x,+y,+z...
-  std::vector<int> home_;                       // per particle
+  // Per home: block ids of itself and its +x, +y, +z... neighbours; -1 where no stencil reaches.
+  std::vector<std::array<int, 8>> neighbours_;
+  std::vector<int> home_;  // per particle
   std::vector<std::array<std::uint8_t, 3>> local_;
   std::vector<int> order_, start_;  // particles sorted by home block
   std::array<std::vector<int>, 8> colour_homes_;

@@ -128,7 +128,7 @@ void Stepper::particle_to_grid() {
     const auto& homes = grid_.homes_of_colour(colour);
     const auto& tasks = grid_.tasks_of_colour(colour);
     const int nt = static_cast<int>(tasks.size()) - 1;
-#pragma omp parallel for schedule(dynamic, 2)
+#pragma omp parallel for schedule(dynamic, 1)
     for (int task = 0; task < nt; ++task) {
       for (int k = tasks[task]; k < tasks[task + 1]; ++k) {
         for (const int i : grid_.particles_of(homes[k])) scatter(static_cast<std::size_t>(i));
@@ -204,7 +204,8 @@ void Stepper::grid_to_particle() {
         const double wab = st.w[0][a] * st.w[1][b];
         for (int c = 0; c < 3; ++c) {
           const auto& g = grid_.nodes[st.node(a, b, c)];
-          const double s = wab * st.w[2][c] / g.m;
+          // A node of zero weight that no other particle reaches has no mass (and no momentum).
+          const double s = g.m > 0.0 ? wab * st.w[2][c] / g.m : 0.0;
           const double q[3] = {s * g.px, s * g.py, s * g.pz};
           const double dzc = st.d[2][c];
           for (int r = 0; r < 3; ++r) {

@@ -343,6 +343,32 @@ TEST(Analysis, RecordEndingAtTheTopOfTheFlight) {
   EXPECT_FALSE(has_warning(a, "z is highest at the last sample"));
 }
 
+// Heights with 10 um of noise (a laser sensor), the record cut at the top of the flight and
+// half-way up: at the top the curvature is lost in the noise, so the warning stays (H may be low
+// by the noise only); half-way up it must stay too.
+TEST(Analysis, NoisyHeightKeepsTheLowerBoundWarning) {
+  std::mt19937 gen(7u);
+  const auto uniform = [&] { return (static_cast<double>(gen()) + 0.5) / 4294967296.0; };
+  std::vector<double> noise;
+  for (int i = 0; i <= 1100; ++i) {
+    noise.push_back(10e-6 * std::sqrt(-2.0 * std::log(uniform())) *
+                    std::cos(2.0 * std::numbers::pi * uniform()));
+  }
+  Spec spec;
+  spec.z = [&](double t) {
+    return z_jump(t) + noise[static_cast<std::size_t>(std::lround(t / kDt))];
+  };
+  for (const double t_end : {60e-3, kT1 + kV0 / g}) {
+    spec.t_end = t_end;
+    const auto a = analyze(make(spec), with_R());
+    ASSERT_TRUE(a.H);
+    const auto z = make(spec).column("z");
+    if (std::max_element(z.begin(), z.end()) == z.end() - 1) {
+      EXPECT_TRUE(has_warning(a, "z is highest at the last sample")) << t_end;
+    }
+  }
+}
+
 // Gaussian noise of standard deviation 1% F* (Box-Muller on std::mt19937, which the standard
 // specifies bit for bit, so the series is the same everywhere).
 TEST(Analysis, NoiseRobustness) {
