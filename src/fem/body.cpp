@@ -196,10 +196,14 @@ template <bool kEnergy>
 double Body::element_loop(const mesh::Points& x, mesh::Points* f) const {
   std::atomic<int> bad{-1};
   double energy = 0.0;
+  // Each element's energy, added up in element order after the parallel loop: a sum that does not
+  // depend on the number of threads or on which finishes first (an OpenMP reduction would).
+  std::vector<double> element_energy;
   const Material mat = material_;
   for (const auto& colour : colours_) {
     const int count = static_cast<int>(colour.size());
-#pragma omp parallel for schedule(static) reduction(+ : energy)
+    if constexpr (kEnergy) element_energy.assign(colour.size(), 0.0);
+#pragma omp parallel for schedule(static)
     for (int k = 0; k < count; ++k) {
       const int e = colour[k];
       const auto& tet = mesh_.tets[e];
@@ -228,7 +232,7 @@ double Body::element_loop(const mesh::Points& x, mesh::Points* f) const {
             ok = false;
             break;
           }
-          energy += w * psi;
+          element_energy[static_cast<std::size_t>(k)] += w * psi;
         } else {
           double P[9];
           if (!neo_hookean_stress(mat, F, P)) {
@@ -255,6 +259,9 @@ double Body::element_loop(const mesh::Points& x, mesh::Points* f) const {
           f->z[tet[a]] += fe[a][2];
         }
       }
+    }
+    if constexpr (kEnergy) {
+      for (const double u : element_energy) energy += u;
     }
     if (bad.load() >= 0) break;
   }
