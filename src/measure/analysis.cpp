@@ -44,10 +44,10 @@ double rise_left(std::span<const double> t, std::span<const double> z) {
     X(static_cast<Eigen::Index>(i), 2) = tau * tau;
     y(static_cast<Eigen::Index>(i)) = z[j];
   }
-  const Eigen::Matrix3d XtX = X.transpose() * X;
-  const Eigen::Vector3d c = XtX.ldlt().solve(X.transpose() * y);
+  const Eigen::Matrix3d inv = (X.transpose() * X).inverse();  // 3 x 3, tau scaled to [-1, 0]
+  const Eigen::Vector3d c = inv * (X.transpose() * y);
   const double rss = (X * c - y).squaredNorm();
-  const double var_c2 = rss / static_cast<double>(k - 3) * XtX.inverse()(2, 2);
+  const double var_c2 = rss / static_cast<double>(k - 3) * inv(2, 2);
   const double v_end = c(1) / scale;  // dz/dt at the last sample
   const double decel = -2.0 * c(2) / (scale * scale);
   if (!(decel > 0.0) || c(2) * c(2) <= 9.0 * var_c2) return kUnknown;

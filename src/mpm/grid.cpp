@@ -131,12 +131,8 @@ void SparseGrid::rebuild(const mesh::Points& x) {
       by_curve[h] = {morton_key(block_coords_[h]), static_cast<int>(h)};
     }
     std::sort(by_curve.begin(), by_curve.end());
-    std::vector<int> renumber(nh);
-    std::vector<int> home_block(nh);
-    for (std::size_t h = 0; h < nh; ++h) {
-      renumber[by_curve[h].second] = static_cast<int>(h);
-      home_block[h] = by_curve[h].second;
-    }
+    std::vector<int> renumber(nh);  // block id -> home number; by_curve[h].second is the inverse
+    for (std::size_t h = 0; h < nh; ++h) renumber[by_curve[h].second] = static_cast<int>(h);
     // The neighbour blocks that some particle of each home reaches (bit nb of needed[h]): every
     // nb whose axes are among those a particle's stencil crosses.
     std::vector<std::uint8_t> needed(nh, 0);
@@ -154,7 +150,7 @@ void SparseGrid::rebuild(const mesh::Points& x) {
     for (auto& c : colour_tasks_) c.assign(1, 0);
     std::array<std::array<std::int64_t, 3>, 8> last_cube{};
     for (std::size_t h = 0; h < nh; ++h) {
-      const auto b = block_coords_[home_block[h]];
+      const auto b = block_coords_[by_curve[h].second];
       for (int nb = 0; nb < 8; ++nb) {
         neighbours_[h][nb] =
             (needed[h] >> nb & 1) != 0

@@ -42,6 +42,21 @@ struct ShellOverPlate {
   ShellOverPlate(const ShellOverPlate&) = delete;  // the stepper holds the rim's address
   ShellOverPlate& operator=(const ShellOverPlate&) = delete;
 
+  // Steps until the clock reaches t_end, calling each_step() after every step; returns the mean
+  // plate force over those steps [N].
+  template <typename EachStep>
+  double mean_force_until(double t_end, EachStep&& each_step) {
+    double sum = 0.0;
+    int n = 0;
+    while (stepper->time() < t_end) {
+      stepper->step();
+      sum += plate->force();
+      ++n;
+      each_step();
+    }
+    return n > 0 ? sum / n : 0.0;
+  }
+
   // Height of the shell's outer apex above the plate [m].
   [[nodiscard]] double apex_height() const { return stepper->particles().x.z[apex]; }
 

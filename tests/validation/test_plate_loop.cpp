@@ -33,26 +33,18 @@ TEST_P(PlateLoop, TheRingToDiskTransitionFallsWithinTheContactBounds) {
   using P = testing::ShellOverPlate;
   const double v0 = 0.05, travel = 9.0e-3, interval = 0.5e-3, mu = GetParam();
   P setup(mu);
-  auto& s = *setup.stepper;
   setup.rim.vz = -v0;
   std::vector<Sample> samples;
-  double sum = 0.0, next = interval;
-  int n = 0;
   bool unloading = false;
-  while (!unloading || setup.rim.z < 0.0) {
-    s.step();
-    sum += setup.plate->force();
-    ++n;
+  const auto turn_at_the_bottom = [&] {
     if (!unloading && -setup.rim.z > P::gap + travel) {
       unloading = true;
       setup.rim.vz = v0;
     }
-    if (s.time() >= next) {
-      samples.push_back({-setup.rim.z - P::gap, sum / n, setup.apex_height(), unloading});
-      sum = 0.0;
-      n = 0;
-      next += interval;
-    }
+  };
+  for (double next = interval; !unloading || setup.rim.z < 0.0; next += interval) {
+    const double F = setup.mean_force_until(next, turn_at_the_bottom);
+    samples.push_back({-setup.rim.z - P::gap, F, setup.apex_height(), unloading});
   }
   if (const char* prefix = std::getenv("SNAPJUMP_PLATE_LOOP_CSV")) {
     const std::string path = std::string(prefix) + "-mu" + std::to_string(mu).substr(0, 3) + ".csv";
