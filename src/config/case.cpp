@@ -353,32 +353,45 @@ std::span<const KeySpec> quantity_keys() { return kKeys; }
 std::string_view default_case_text() { return kDefaultCase; }
 
 std::string to_toml(const Case& c) {
-  // Every number with 17 significant digits, which reads back to the same double.
-  const auto num = [](double v) { return fmt::format("{:.17g}", v); };
-  std::string t = fmt::format("# {} with every value in SI (written by snapjump)\n", c.source);
-  t += fmt::format("title = \"{}\"\n", c.title);
-  t += fmt::format("\n[shell]\nR = {}\nh = {}\nphi = {}\n", num(c.shell.R), num(c.shell.h),
-                   num(c.shell.phi));
-  t += fmt::format("\n[material]\nE = {}\nnu = {}\nrho = {}\n", num(c.material.E),
-                   num(c.material.nu), num(c.material.rho));
-  t += fmt::format("\n[popper]\nnet_weight = {}\nmoving_mass = {}\n", num(c.popper.net_weight),
-                   num(c.popper.moving_mass));
-  t += fmt::format("\n[friction]\nmu = {}\n", num(c.friction.mu));
-  t += fmt::format("\n[gas]\ncontainer_volume = {}\np0 = {}\nalpha_n = {}\nbeta_n = {}\n",
-                   num(c.gas.container_volume), num(c.gas.p0), num(c.gas.alpha_n),
-                   num(c.gas.beta_n));
-  t += "\n[protocol]\n";
-  t += c.protocol.delta_p_j
-           ? fmt::format("delta_p_j = {}\n", num(*c.protocol.delta_p_j))
-           : fmt::format("delta_p_j_over_pc = {}\n", num(c.protocol.delta_p_j_over_pc));
-  t += fmt::format("\n[numerics]\nresolution = \"{}\"\n", to_string(c.numerics.resolution));
-  if (c.numerics.element_size)
-    t += fmt::format("element_size = {}\n", num(*c.numerics.element_size));
-  if (c.numerics.elements_through_thickness) {
-    t += fmt::format("elements_through_thickness = {}\n", *c.numerics.elements_through_thickness);
+  // Written by toml++'s serializer, never by string formatting, so that any title or file name
+  // (quotes, newlines, control characters) reads back as it was. Numbers are doubles, which the
+  // serializer writes in their shortest form that reads back to the same value.
+  toml::table shell{{"R", c.shell.R}, {"h", c.shell.h}, {"phi", c.shell.phi}};
+  toml::table material{{"E", c.material.E}, {"nu", c.material.nu}, {"rho", c.material.rho}};
+  toml::table popper{{"net_weight", c.popper.net_weight}, {"moving_mass", c.popper.moving_mass}};
+  toml::table friction{{"mu", c.friction.mu}};
+  toml::table gas{{"container_volume", c.gas.container_volume},
+                  {"p0", c.gas.p0},
+                  {"alpha_n", c.gas.alpha_n},
+                  {"beta_n", c.gas.beta_n}};
+  toml::table protocol;
+  if (c.protocol.delta_p_j) {
+    protocol.insert("delta_p_j", *c.protocol.delta_p_j);
+  } else {
+    protocol.insert("delta_p_j_over_pc", c.protocol.delta_p_j_over_pc);
   }
-  if (c.numerics.end_time) t += fmt::format("end_time = {}\n", num(*c.numerics.end_time));
-  return t;
+  toml::table numerics{{"resolution", std::string(to_string(c.numerics.resolution))}};
+  if (c.numerics.element_size) numerics.insert("element_size", *c.numerics.element_size);
+  if (c.numerics.elements_through_thickness) {
+    numerics.insert("elements_through_thickness",
+                    static_cast<std::int64_t>(*c.numerics.elements_through_thickness));
+  }
+  if (c.numerics.end_time) numerics.insert("end_time", *c.numerics.end_time);
+  toml::table doc{{"title", c.title},
+                  {"shell", std::move(shell)},
+                  {"material", std::move(material)},
+                  {"popper", std::move(popper)},
+                  {"friction", std::move(friction)},
+                  {"gas", std::move(gas)},
+                  {"protocol", std::move(protocol)},
+                  {"numerics", std::move(numerics)}};
+  // No literal or multi-line strings: every string in double quotes, escaped, on one line.
+  constexpr auto flags = toml::format_flags::none;
+  std::ostringstream out;
+  out << "# written by snapjump from "
+      << toml::toml_formatter{toml::value<std::string>(c.source), flags} << ", every value in SI\n"
+      << toml::toml_formatter{doc, flags} << '\n';
+  return out.str();
 }
 
 const KeySpec* find_quantity_key(std::string_view dotted) {

@@ -52,7 +52,8 @@ FigureResult plot_contact(const std::filesystem::path& curves, const FigureOptio
       "# Rescaled units (docs/contact-solver.md): e_hat = sqrt(kappa) e / h, "
       "N = kappa F R / (E h^3),\n# kappa = 12 (1 - nu^2); the curves do not depend on nu.\n"
       "# {}\n",
-      curves.string(), result.script.filename().string(), k.source);
+      printable(curves.string()), printable(result.script.filename().string()),
+      printable(k.source));
   gp += terminal(options.format, 1000, 750, result.figure, 15);
   gp += datablock("disk", "e_hat  N  (disk branch)", disk);
   gp += datablock("ring", "e_hat  N  (ring branch, mirror-buckled)", ring);

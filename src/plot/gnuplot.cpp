@@ -66,15 +66,34 @@ FigureResult figure_paths(const FigureOptions& options, const fs::path& default_
   } else {
     r.figure = options.output;
   }
+  // The image's name is written into the script (`set output`): a control character there would
+  // change the name gnuplot writes to, so such a name is refused rather than altered.
+  const auto name = r.figure.filename().string();
+  if (printable(name) != name) {
+    throw PlotInputError(fmt::format(
+        "the figure's file name {} holds a control character (a newline, a tab, ...); choose "
+        "another with --output",
+        quote(name)));
+  }
   r.script = r.figure;
   r.script.replace_extension("gp");
   if (r.script == r.figure) r.script += ".gp";  // an image named FIGURE.gp
   return r;
 }
 
+std::string printable(std::string_view text) {
+  std::string s;
+  s.reserve(text.size());
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    s += (u < 0x20 || u == 0x7f) ? ' ' : c;
+  }
+  return s;
+}
+
 std::string quote(std::string_view text) {
   std::string s = "'";
-  for (const char c : text) {
+  for (const char c : printable(text)) {
     if (c == '\'') s += '\'';
     s += c;
   }
@@ -107,7 +126,7 @@ std::string number(double v) {
 
 std::string datablock(std::string_view name, std::string_view columns,
                       const std::vector<std::vector<double>>& rows) {
-  std::string s = fmt::format("${} << EOD\n# {}\n", name, columns);
+  std::string s = fmt::format("${} << EOD\n# {}\n", printable(name), printable(columns));
   for (const auto& row : rows) {
     const bool finite =
         std::all_of(row.begin(), row.end(), [](double v) { return std::isfinite(v); });

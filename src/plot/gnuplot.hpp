@@ -51,7 +51,15 @@ FigureResult figure_paths(const FigureOptions& options, const std::filesystem::p
 
 // --- Script text ---
 
-// A gnuplot single-quoted string: 'it''s'.
+// Text with every control character (below 0x20, and 0x7f) replaced by a space. gnuplot reads
+// a script line by line, so a newline or carriage return inside a string a user wrote (a case
+// title, a folder or file name) would end the string's line and make the rest a command, such
+// as system("..."). Every user-written string that reaches a script goes through this, by way of
+// quote() or datablock().
+std::string printable(std::string_view text);
+
+// A gnuplot single-quoted string of printable(text), quotes doubled: 'it''s'. gnuplot expands
+// neither backquotes nor macros inside single quotes, so the result is inert data.
 std::string quote(std::string_view text);
 
 // The terminal lines for a figure of width x height pixels (pngcairo or svg, enhanced text,
@@ -61,8 +69,8 @@ std::string terminal(Format format, int width, int height, const std::filesystem
                      int font_size = 14);
 
 // A datablock `$name << EOD ... EOD` with one line per row, values in full precision; `columns`
-// becomes a comment line naming them. Rows with a non-finite value are written as a blank line
-// (gnuplot breaks lines there).
+// becomes a comment line naming them (printable(), so that it cannot end the datablock). Rows with
+// a non-finite value are written as a blank line (gnuplot breaks lines there).
 std::string datablock(std::string_view name, std::string_view columns,
                       const std::vector<std::vector<double>>& rows);
 

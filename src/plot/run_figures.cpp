@@ -181,7 +181,7 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options) 
       "# Fig. 2(a) of the paper: the time series of one run, from {}.\n"
       "# Written by `snapjump plot series`; edit and redraw with `gnuplot {}` in this folder.\n"
       "# Units: t in ms, z r w in mm, F in N, delta_p in {}.\n",
-      csv.string(), result.script.filename().string(), kpa ? "kPa" : "Pa");
+      printable(csv.string()), printable(result.script.filename().string()), kpa ? "kPa" : "Pa");
   gp += terminal(options.format, 1200, 1000, result.figure, 14);
   gp += datablock(
       "series",
@@ -382,13 +382,13 @@ FigureResult plot_sections(const fs::path& run_dir, std::span<const double> time
       "# Written by `snapjump plot sections`; edit and redraw with `gnuplot {}` in this folder.\n"
       "# Each block holds the mesh points (x, z in mm) of one snapshot that lie within a thin "
       "slab\n# around the plane y = y_mid (1.5 % of the shell's width on each side).\n",
-      pvd.string(), result.script.filename().string());
+      printable(pvd.string()), printable(result.script.filename().string()));
   // Equal scales on both axes: the canvas height follows the shape (plot about 850 px wide).
   const double aspect = (std::max(zmax, 0.0) - std::min(zmin, 0.0)) / std::max(xmax - xmin, 1e-9);
   const int height = static_cast<int>(std::clamp(850.0 * 1.15 * aspect + 220.0, 450.0, 1000.0));
   gp += terminal(options.format, 1200, height, result.figure, 15);
   for (std::size_t k = 0; k < sections.size(); ++k) {
-    gp += fmt::format("# snapshot {} at t = {} s{}\n", sections[k].frame->file.string(),
+    gp += fmt::format("# snapshot {} at t = {} s{}\n", printable(sections[k].frame->file.string()),
                       sections[k].frame->time,
                       sections[k].projected ? " (projected on signed distance to the axis)" : "");
     gp += datablock(fmt::format("section{}", k), "x [mm]  z [mm]", sections[k].rows);

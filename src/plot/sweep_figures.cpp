@@ -117,7 +117,7 @@ std::string header(std::string_view what, const fs::path& table, const FigureRes
   return fmt::format(
       "# {}, from the sweep table {}.\n"
       "# Written by `snapjump plot sweep`; edit and redraw with `gnuplot {}` in this folder.\n",
-      what, table.string(), result.script.filename().string());
+      what, printable(table.string()), printable(result.script.filename().string()));
 }
 
 std::string no_rows_error(const Table& t, std::string_view x, std::string_view y) {
@@ -489,7 +489,7 @@ std::string phase(const Table& t, const fs::path& table, FigureResult& result,
     gp += fmt::format(
         "# at the case {} with h = (h/R) R, and popper.moving_mass = net_weight / g\n"
         "# while bisecting (the snap margin does not depend on the moving mass).\n",
-        snap_case);
+        printable(snap_case));
   } else {
     gp += "# (not drawn: no case file of a run was found).\n";
   }

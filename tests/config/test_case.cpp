@@ -239,6 +239,42 @@ TEST(CaseFile, WrittenInSIAndReadBackTheSame) {
   EXPECT_EQ(r.numerics.end_time, c.numerics.end_time);
 }
 
+// Any title and any source file name survive the round trip (issue 15, item 2): the case file a
+// run writes back must read again, or the run cannot be resumed and a sweep's runs all fail.
+TEST(CaseFile, HostileStringsSurviveTheRoundTrip) {
+  std::string every;
+  for (int ch = 1; ch < 128; ++ch) every += static_cast<char>(ch);
+  const std::vector<std::string> titles = {"it's \"quoted\"",
+                                           "two\nlines\r\n[shell]\nR = 1",
+                                           "back\\slash \\u0041 \\n",
+                                           "tab\there",
+                                           "\"\"\"triple\"\"\"",
+                                           "'''literal'''",
+                                           "# not a comment",
+                                           "ünïcödé – δp ≥ 0",
+                                           every,
+                                           ""};
+  for (const auto& title : titles) {
+    auto c = parse_case(kMinimal, "case.toml");
+    c.title = title;
+    c.source = "dir\nwith \"odd\" name/" + title + ".toml";
+    c.gas.p0 = 98765.4321;
+    c.numerics.element_size = 1.0 / 3.0 * 1e-3;
+    c.numerics.elements_through_thickness = 2;
+    c.numerics.end_time = 0.1 + 0.2;  // not a short decimal
+    const auto text = to_toml(c);
+    Case r;
+    ASSERT_NO_THROW(r = parse_case(text, "written.toml")) << text;
+    EXPECT_EQ(r.title, title);
+    EXPECT_EQ(r.gas.p0, c.gas.p0);
+    EXPECT_EQ(r.numerics.element_size, c.numerics.element_size);
+    EXPECT_EQ(r.numerics.elements_through_thickness, 2);
+    EXPECT_EQ(r.numerics.end_time, c.numerics.end_time);
+    const auto body = [](const std::string& t) { return t.substr(t.find('\n')); };  // no comment
+    EXPECT_EQ(body(to_toml(r)), body(text)) << "written twice, the same values";
+  }
+}
+
 TEST(CaseFile, MissingFile) {
   EXPECT_THROW((void)load_case_file("/nonexistent/case.toml"), CaseError);
 }

@@ -459,5 +459,70 @@ TEST_F(Plot, GnuplotErrorIsReported) {
   }
 }
 
+// --- Nothing a user writes becomes a gnuplot command ---
+
+// A line that makes gnuplot create `marker` if it is ever read as a command, wrapped in newlines
+// (and a carriage return) so that it stands on a line of its own unless the newlines are taken
+// out; the quote tries to close a single-quoted string first.
+std::string hostile(const fs::path& marker) {
+  return "x'\nsystem('touch " + marker.string() + "')\r\n# ";
+}
+
+TEST(PlotScript, QuotedTextHasNoControlCharacters) {
+  std::string every;
+  for (int c = 1; c < 128; ++c) every += static_cast<char>(c);
+  for (const auto& s : {quote(every), quote(hostile("/tmp/m")), printable(every)}) {
+    for (const char c : s) {
+      const auto u = static_cast<unsigned char>(c);
+      EXPECT_FALSE(u < 0x20 || u == 0x7f) << "control character " << int(u) << " in " << s;
+    }
+  }
+  EXPECT_EQ(quote("it's"), "'it''s'");
+  EXPECT_EQ(quote("a\nb"), "'a b'");
+  const auto block = datablock("d", "x\nEOD\nsystem('true')", {{1.0, 2.0}});
+  EXPECT_EQ(block, "$d << EOD\n# x EOD system('true')\n1 2\nEOD\n");
+}
+
+TEST_F(Plot, HostileTitleIsNotRunByGnuplot) {
+  const auto run_dir = make_run(dir_);
+  const auto marker = dir_ / "title-ran";
+  nlohmann::json summary = nlohmann::json::parse(slurp(run_dir / "summary.json"));
+  summary["case"]["title"] = hostile(marker);
+  std::ofstream(run_dir / "summary.json") << summary.dump(2);
+  const auto r = run({"plot", "series", run_dir.string()});
+  ASSERT_EQ(r.code, app::kExitOk) << r.err << r.out;
+  EXPECT_FALSE(fs::exists(marker)) << "gnuplot ran a command from the case title";
+  const auto script = slurp(run_dir / "figures" / "series.gp");
+  EXPECT_FALSE(contains(script, "\nsystem(")) << script;
+  EXPECT_TRUE(contains(script, "system(''touch")) << "the title is kept, as text";
+}
+
+TEST_F(Plot, HostileRunFolderNameIsNotRunByGnuplot) {
+  // A folder's name cannot hold '/': the command names a file in the folder gnuplot runs in.
+  const auto run_dir = dir_ / hostile("folder-ran");
+  const auto marker = run_dir / "figures" / "folder-ran";
+  fs::rename(make_run(dir_), run_dir);
+  nlohmann::json summary = nlohmann::json::parse(slurp(run_dir / "summary.json"));
+  summary["case"].erase("title");  // the figure's title falls back to the folder's name
+  std::ofstream(run_dir / "summary.json") << summary.dump(2);
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"plot", "series", run_dir.string()},
+           {"plot", "sections", run_dir.string(), "--times", "0"}}) {
+    const auto r = run(args);
+    ASSERT_EQ(r.code, app::kExitOk) << args[1] << ": " << r.err << r.out;
+    EXPECT_FALSE(fs::exists(marker)) << "gnuplot ran a command from the folder's name: " << args[1];
+  }
+}
+
+TEST_F(Plot, OutputNameWithAControlCharacterIsRefused) {
+  const auto run_dir = make_run(dir_);
+  const auto marker = dir_ / "output-ran";
+  const auto out = dir_ / (hostile(marker) + ".png");
+  const auto r = run({"plot", "series", run_dir.string(), "--output", out.string()});
+  EXPECT_EQ(r.code, app::kExitBadInput) << r.err << r.out;
+  EXPECT_TRUE(contains(r.err, "control character")) << r.err;
+  EXPECT_FALSE(fs::exists(marker));
+}
+
 }  // namespace
 }  // namespace snapjump::plot
