@@ -212,10 +212,13 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
   fmt::print(out, "  {:<40} {:>12}\n", "outcome", measure::outcome_text(a.outcome));
   row("transition onset t (w/R < 0.03)", a.t_onset, 1e-3, "ms");
   row("r*  contact radius at the onset", a.r_star, 1e-3, "mm");
-  row("e*  apex displacement at the onset", a.e_star, 1e-3, "mm");
-  row("F*  peak plate force after the onset", a.F_star, 1.0, "N");
+  row("e*  indentation at the onset", a.e_star, 1e-3, "mm");
+  row("    apex displacement at the onset", a.e_apex_star, 1e-3, "mm");
+  row("foot of the force's rise to F*", a.t_force_rise, 1e-3, "ms");
+  row("F*  peak plate force of the snap", a.F_star, 1.0, "N");
   row("launch t (F back to about 0)", a.t_launch, 1e-3, "ms");
   row("t*  onset to launch", a.t_star, 1e-3, "ms");
+  row("    force rise to launch", a.t_star_rise, 1e-3, "ms");
   row("force threshold used for the launch", a.force_threshold, 1.0, "N");
   row("H   highest container position", a.H, 1e-3, "mm");
   row("H_l container position at the onset", a.H_l, 1e-3, "mm");
@@ -225,7 +228,8 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
     row("alpha_r = r* / sqrt(h R)", a.alpha_r, 1.0, "");
     row("alpha_e = e* / h", a.alpha_e, 1.0, "");
     row("alpha_F = F* / (E h^3 / R)", a.alpha_F, 1.0, "");
-    row("alpha_t = t* / sqrt(m R / (E h^2))", a.alpha_t, 1.0, "");
+    row("alpha_t = t* / sqrt(m R / (E h^2)), m = popper + counterweight", a.alpha_t, 1.0, "");
+    row("  the same with the popper's own mass", a.alpha_t_own, 1.0, "");
     row("H_s / (E h^4 / (mg R))", a.H_s_scaled, 1.0, "");
   }
   for (const auto& w : a.warnings) fmt::print(out, "  warning: {}\n", w);

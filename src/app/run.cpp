@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ostream.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <cmath>
@@ -135,13 +136,27 @@ LoopState load_checkpoint(const fs::path& dir, popper::Popper& pop) {
 
 void print_numerics(std::ostream& out, const popper::Popper& pop, const mpm::TimeStep& step) {
   const auto& n = pop.numerics();
+  fmt::print(
+      out,
+      "  mesh        {} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} "
+      "layers)\n  grid        {:.3g} mm cells (h / {:.3g})\n  time step   {:.3g} us (elastic "
+      "bound {:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
+      pop.body().num_elements(), pop.body().num_nodes(), 1e3 * n.cap.element_size, n.cap.layers,
+      1e3 * n.dx, pop.input().shell.h / n.dx, 1e6 * step.dt, 1e6 * step.elastic, 1e6 * step.grid,
+      step.limiting);
+  // What the model assumes where the paper is silent (docs/popper.md, "Assumptions").
+  const auto& c = pop.input();
   fmt::print(out,
-             "  mesh        {} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} "
-             "layers)\n  grid        {:.3g} mm cells\n  time step   {:.3g} us (elastic bound "
-             "{:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
-             pop.body().num_elements(), pop.body().num_nodes(), 1e3 * n.cap.element_size,
-             n.cap.layers, 1e3 * n.dx, 1e6 * step.dt, 1e6 * step.elastic, 1e6 * step.grid,
-             step.limiting);
+             "  apparatus   popper {:.4g} g, counterweight {:.4g} g, inertia {:.4g} g ({} wire); "
+             "t_c uses the inertia\n  gas         container {:.4g} mL; reference: the undeformed "
+             "popper at p0 ({:.4g} mL)\n",
+             1e3 * c.popper.mass, 1e3 * c.popper.counterweight(), 1e3 * c.popper.moving_mass(),
+             c.popper.wire_stiffness ? fmt::format("{:.4g} N/m", *c.popper.wire_stiffness)
+                                     : std::string("rigid"),
+             1e6 * c.gas.container_volume, 1e6 * pop.gas().V_ref());
+  if (!c.defaults_used.empty()) {
+    fmt::print(out, "  assumed     {}\n", fmt::join(c.defaults_used, "; "));
+  }
 }
 
 // Analyses the run's time series, puts the measured quantities, the theory's and their
@@ -178,15 +193,45 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   fmt::print(out, "  status      {}\n  outcome     {} (theory: {})\n", status,
              measure::outcome_text(analysis.outcome), prediction.outcome.text());
   show("r*  contact radius", analysis.r_star, 1e-3, "mm", range(prediction.r_star, 1e-3));
-  show("e*  apex displacement", analysis.e_star, 1e-3, "mm", range(prediction.e_star, 1e-3));
-  show("F*  peak force", analysis.F_star, 1.0, "N", range(prediction.F_star, 1.0));
+  show("e*  indentation", analysis.e_star, 1e-3, "mm", range(prediction.e_star, 1e-3));
+  show("F*  peak force of the snap", analysis.F_star, 1.0, "N", range(prediction.F_star, 1.0));
   show("t*  onset to launch", analysis.t_star, 1e-3, "ms", range(prediction.t_star, 1e-3));
+  const auto beside = [&](const char* label, const std::optional<double>& v, double scale,
+                          const char* unit) {
+    if (v) fmt::print(out, "  {:<28} {:>10.4g}  {}\n", label, *v / scale, unit);
+  };
+  beside("  apex displacement at onset", analysis.e_apex_star, 1e-3, "mm");
+  if (analysis.t_force_rise && analysis.t_onset) {
+    fmt::print(out, "  {:<28} {:>10.4g}  ms   ({:.3g} ms before the onset)\n",
+               "  force rise starts at", *analysis.t_force_rise * 1e3,
+               (*analysis.t_onset - *analysis.t_force_rise) * 1e3);
+  }
+  beside("  force rise to launch", analysis.t_star_rise, 1e-3, "ms");
   show("H_l lift to the onset", analysis.H_l, 1e-3, "mm", range(prediction.H_l, 1e-3));
   show("H_s flight from the snap", analysis.H_s, 1e-3, "mm", range(prediction.H_s, 1e-3));
   show("H   jump height", analysis.H, 1e-3, "mm", range(prediction.H, 1e-3));
   if (analysis.delta_p_onset) {
     fmt::print(out, "  {:<28} {:>10.4g}  kPa  (suction left when the apex comes down)\n",
                "delta_p at the onset", *analysis.delta_p_onset / 1e3);
+  }
+  // The prefactors, each with the definition behind it.
+  const auto alpha = [&](const char* label, const std::optional<double>& v, theory::Range r,
+                         const char* definition) {
+    fmt::print(out, "  {:<8} {:>8}  bounds {:.3g} .. {:.3g}  {}\n", label,
+               v ? fmt::format("{:.3f}", *v) : std::string("-"), r.lo, r.hi, definition);
+  };
+  const auto& b = prediction.alpha;
+  alpha("alpha_r", analysis.alpha_r, b.alpha_r,
+        "r* / sqrt(hR); r*: radius of the outer particles the plate pushes, at w/R = 0.03");
+  alpha("alpha_e", analysis.alpha_e, b.alpha_e,
+        "e* / h; e*: indentation (rim's approach to the plate) at the onset");
+  alpha("alpha_F", analysis.alpha_F, b.alpha_F,
+        "F* / (E h^3 / R); F*: peak plate force from the foot of its rise to the snap's end");
+  alpha("alpha_t", analysis.alpha_t, b.alpha_t,
+        "t* / sqrt(m R / (E h^2)); m = popper + counterweight (rigid wire)");
+  if (analysis.alpha_t_own) {
+    fmt::print(out, "  {:<8} {:>8.3f}  with m = the popper's own mass (the limit of a soft wire)\n",
+               "", *analysis.alpha_t_own);
   }
   for (const auto& w : analysis.warnings) fmt::print(out, "  note        {}\n", w);
   return analysis;

@@ -30,9 +30,12 @@ constexpr KeySpec kKeys[] = {
     {"material", "rho", "rho", Dimension::Density, false, 1160.0, "1160 kg/m^3", "1160 kg/m^3",
      "density"},
     {"popper", "net_weight", "net-weight", Dimension::Force, true, std::nullopt, "", "0.48 N",
-     "net weight mg: container + shell - counterweight"},
-    {"popper", "moving_mass", "moving-mass", Dimension::Mass, false, std::nullopt, "net_weight / g",
-     "60 g", "inertia of container + shell + counterweight"},
+     "net weight mg: the popper's weight less the counterweight's"},
+    {"popper", "mass", "popper-mass", Dimension::Mass, false, 0.300,
+     "300 g (net_weight / g when heavier: no counterweight)", "300 g",
+     "the popper's own mass: shell + container + the rail's shafts (an estimate, docs/popper.md)"},
+    {"popper", "wire_stiffness", "wire-stiffness", Dimension::Stiffness, false, std::nullopt, "",
+     "3 kN/m", "axial stiffness of the wire to the counterweight (a rigid wire when absent)"},
     {"friction", "mu", "mu", Dimension::Dimensionless, false, 0.3, "0.3", "0.3",
      "Coulomb friction coefficient between shell and plate"},
     {"gas", "container_volume", "container-volume", Dimension::Volume, false, 200e-6, "200 mL",
@@ -47,6 +50,8 @@ constexpr KeySpec kKeys[] = {
      "pressure difference (outside - inside) at release"},
     {"protocol", "delta_p_j_over_pc", "delta-p-j-over-pc", Dimension::Dimensionless, false, 0.5,
      "0.5", "0.5", "delta_p_j as a fraction of Zoelly's p_c (when delta_p_j is not given)"},
+    {"numerics", "grid_spacing", "grid-spacing", Dimension::Length, false, std::nullopt, "",
+     "0.25 mm", "MPM grid spacing (from the resolution preset, a fraction of h, when absent)"},
     {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "", "1 mm",
      "target mesh element size (from the resolution preset when absent)"},
     {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "", "0.5 s",
@@ -261,7 +266,12 @@ Case build(const Reader& r, Case c) {
   c.material.nu = *get("material", "nu");
   c.material.rho = *get("material", "rho");
   c.popper.net_weight = *get("popper", "net_weight");
-  const auto moving_mass = get("popper", "moving_mass");
+  c.popper.mass = *get("popper", "mass");
+  if (r.find(spec("popper", "mass")) == nullptr) {
+    // A popper heavier than the default is loaded with weights and needs no counterweight.
+    c.popper.mass = std::max(c.popper.mass, c.popper.net_weight / kStandardGravity);
+  }
+  if (const auto* k = r.find(spec("popper", "wire_stiffness"))) c.popper.wire_stiffness = k->si;
   c.friction.mu = *get("friction", "mu");
   c.gas.container_volume = *get("gas", "container_volume");
   c.gas.p0 = *get("gas", "p0");
@@ -279,6 +289,7 @@ Case build(const Reader& r, Case c) {
     c.protocol.delta_p_j_over_pc = *get("protocol", "delta_p_j_over_pc");
   }
   if (const auto* e = r.find(spec("numerics", "element_size"))) c.numerics.element_size = e->si;
+  if (const auto* e = r.find(spec("numerics", "grid_spacing"))) c.numerics.grid_spacing = e->si;
   if (const auto* e = r.find(spec("numerics", "end_time"))) c.numerics.end_time = e->si;
 
   // Physical admissibility, each message naming the key.
@@ -297,16 +308,12 @@ Case build(const Reader& r, Case c) {
         fmt::format("{} must lie in (-1, 0.5]", r.where(spec("material", "nu"))));
   positive("material", "rho", c.material.rho);
   positive("popper", "net_weight", c.popper.net_weight);
-  c.popper.moving_mass = moving_mass.value_or(c.popper.net_weight / kStandardGravity);
-  if (!moving_mass) c.defaults_used.push_back("popper.moving_mass = net_weight / g");
-  if (moving_mass) {
-    positive("popper", "moving_mass", *moving_mass);
-    check(*moving_mass * kStandardGravity >= c.popper.net_weight * (1.0 - 1e-12),
-          fmt::format("{} must be at least net_weight / g = {:.6g} kg (a counterweight adds "
-                      "inertia, it cannot remove it)",
-                      r.where(spec("popper", "moving_mass")),
-                      c.popper.net_weight / kStandardGravity));
-  }
+  positive("popper", "mass", c.popper.mass);
+  check(c.popper.mass * kStandardGravity >= c.popper.net_weight * (1.0 - 1e-12),
+        fmt::format("{} must be at least net_weight / g = {:.6g} kg: the counterweight, whose "
+                    "weight is the popper's less the net weight, cannot be negative",
+                    r.where(spec("popper", "mass")), c.popper.net_weight / kStandardGravity));
+  if (c.popper.wire_stiffness) positive("popper", "wire_stiffness", *c.popper.wire_stiffness);
   check(c.friction.mu >= 0.0,
         fmt::format("{} must not be negative", r.where(spec("friction", "mu"))));
   positive("gas", "container_volume", c.gas.container_volume);
@@ -323,6 +330,7 @@ Case build(const Reader& r, Case c) {
           fmt::format("{} must not be negative", r.where(spec("protocol", "delta_p_j_over_pc"))));
   }
   if (c.numerics.element_size) positive("numerics", "element_size", *c.numerics.element_size);
+  if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
   return c;
 }
@@ -358,7 +366,8 @@ std::string to_toml(const Case& c) {
   // serializer writes in their shortest form that reads back to the same value.
   toml::table shell{{"R", c.shell.R}, {"h", c.shell.h}, {"phi", c.shell.phi}};
   toml::table material{{"E", c.material.E}, {"nu", c.material.nu}, {"rho", c.material.rho}};
-  toml::table popper{{"net_weight", c.popper.net_weight}, {"moving_mass", c.popper.moving_mass}};
+  toml::table popper{{"net_weight", c.popper.net_weight}, {"mass", c.popper.mass}};
+  if (c.popper.wire_stiffness) popper.insert("wire_stiffness", *c.popper.wire_stiffness);
   toml::table friction{{"mu", c.friction.mu}};
   toml::table gas{{"container_volume", c.gas.container_volume},
                   {"p0", c.gas.p0},
@@ -372,6 +381,7 @@ std::string to_toml(const Case& c) {
   }
   toml::table numerics{{"resolution", std::string(to_string(c.numerics.resolution))}};
   if (c.numerics.element_size) numerics.insert("element_size", *c.numerics.element_size);
+  if (c.numerics.grid_spacing) numerics.insert("grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.elements_through_thickness) {
     numerics.insert("elements_through_thickness",
                     static_cast<std::int64_t>(*c.numerics.elements_through_thickness));
@@ -393,6 +403,10 @@ std::string to_toml(const Case& c) {
       << toml::toml_formatter{doc, flags} << '\n';
   return out.str();
 }
+
+double Popper::counterweight() const { return std::max(0.0, mass - net_weight / kStandardGravity); }
+
+double Popper::moving_mass() const { return mass + counterweight(); }
 
 const KeySpec* find_quantity_key(std::string_view dotted) {
   const auto dot = dotted.find('.');

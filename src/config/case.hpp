@@ -31,9 +31,19 @@ struct Material {
   double rho = 0.0;  // density [kg/m^3]
 };
 
+// The apparatus (paper, Fig. 1(d)): the popper (shell, acrylic container, the rail's two shafts
+// sliding in air bushings) hangs on a wire over pulleys to a counterweight. Their weights differ
+// by the net weight; their masses add up to the inertia the plate's force accelerates.
 struct Popper {
-  double net_weight = 0.0;   // the paper's mg: weight of container + shell - counterweight [N]
-  double moving_mass = 0.0;  // inertia of container + shell + counterweight [kg]
+  double net_weight = 0.0;  // the paper's mg: weight of the popper minus the counterweight [N]
+  double mass = 0.0;        // the popper's own mass: shell + container + the rail's shafts [kg]
+  // Axial stiffness of the wire between popper and counterweight [N/m]; absent: a rigid wire.
+  std::optional<double> wire_stiffness;
+  // mass - net_weight / g [kg].
+  [[nodiscard]] double counterweight() const;
+  // mass + counterweight: the inertia of the apparatus with a rigid wire, the theory's m in
+  // t_c = sqrt(m R / (E h^2)) [kg].
+  [[nodiscard]] double moving_mass() const;
 };
 
 struct Friction {
@@ -62,6 +72,7 @@ std::optional<Resolution> parse_resolution(std::string_view text);
 struct Numerics {
   Resolution resolution = Resolution::Default;
   std::optional<double> element_size;  // [m]; from the resolution preset when absent
+  std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)
   // Quadratic elements across h; from the resolution preset when absent (coarse 1, default and
   // fine 2).
   std::optional<int> elements_through_thickness;

@@ -34,6 +34,7 @@ constexpr std::array kDimensions{
                  "Pa^-1 s^-2", "1.0e-3 Pa^-1 s^-2"},
     DimensionRow{Dimension::ValveRate, "inverse pressure per time", "Pa^-1 s^-1", "Pa^-1 s^-1",
                  "5.0e-5 Pa^-1 s^-1"},
+    DimensionRow{Dimension::Stiffness, "stiffness", "N/m", "N/m", "3 kN/m"},
 };
 
 const DimensionRow& row(Dimension d) {

@@ -40,7 +40,10 @@ std::vector<ReportRow> prediction_rows(const theory::Prediction& p) {
       exact(g, "cavity_volume", "volume under the inner surface", p.cavity_volume, "m^3", "mL",
             1e-6),
       exact(l, "net_weight", "net weight mg", p.net_weight, "N", "N", 1.0),
-      exact(l, "moving_mass", "moving mass m", p.moving_mass, "kg", "g", 1e-3),
+      exact(l, "popper_mass", "popper's own mass m_p", p.popper_mass, "kg", "g", 1e-3),
+      exact(l, "counterweight", "counterweight m_p - mg / g", p.counterweight, "kg", "g", 1e-3),
+      exact(l, "moving_mass", "moving mass m = m_p + counterweight", p.moving_mass, "kg", "g",
+            1e-3),
       exact(l, "p_c", "Zoelly buckling pressure p_c", p.zoelly_pc, "Pa", "kPa", 1e3),
       exact(l, "delta_p_j", "pressure difference at release delta_p_j", p.delta_p_j, "Pa", "kPa",
             1e3),
@@ -75,8 +78,12 @@ void write_table(std::ostream& out, const config::Case& c, const theory::Predict
              c.shell.h / c.shell.R);
   fmt::print(out, "  material      E = {} MPa, nu = {}, rho = {} kg/m^3\n",
              number(c.material.E * 1e-6), number(c.material.nu), number(c.material.rho));
-  fmt::print(out, "  popper        mg = {} N, m = {} g  (E h^2 / mg = {:.4g})\n",
-             number(c.popper.net_weight), number(c.popper.moving_mass * 1e3),
+  fmt::print(out,
+             "  popper        mg = {} N, popper {} g + counterweight {} g = m = {} g, wire {}  "
+             "(E h^2 / mg = {:.4g})\n",
+             number(c.popper.net_weight), number(c.popper.mass * 1e3),
+             number(c.popper.counterweight() * 1e3), number(c.popper.moving_mass() * 1e3),
+             c.popper.wire_stiffness ? number(*c.popper.wire_stiffness) + " N/m" : "rigid",
              c.material.E * c.shell.h * c.shell.h / c.popper.net_weight);
   fmt::print(out, "  friction      mu = {}\n", number(c.friction.mu));
   if (!c.defaults_used.empty()) {
@@ -126,7 +133,11 @@ nlohmann::json case_to_json(const config::Case& c) {
           {"nu", c.material.nu},
           {"rho", c.material.rho},
           {"net_weight", c.popper.net_weight},
-          {"moving_mass", c.popper.moving_mass},
+          {"popper_mass", c.popper.mass},
+          {"counterweight", c.popper.counterweight()},
+          {"moving_mass", c.popper.moving_mass()},
+          {"wire_stiffness", c.popper.wire_stiffness ? nlohmann::json(*c.popper.wire_stiffness)
+                                                     : nlohmann::json(nullptr)},
           {"mu", c.friction.mu},
           {"container_volume", c.gas.container_volume},
           {"p0", c.gas.p0},

@@ -78,6 +78,46 @@ double robust_sigma(std::vector<double> v) {
   return 1.4826 * median(v);
 }
 
+// The start of the rise of F that ends at sample `k`. The base F_b is the lowest F met walking
+// back from k until F climbs again by more than a tenth of the rise F[k] - F_b (noise smaller than
+// that does not stop the walk); the rise starts where F, walking back from k, first falls below
+// F_b + 0.1 (F[k] - F_b): the index of that sample (k itself when F[k] is the base) and the level.
+struct RiseStart {
+  std::size_t index;
+  double level;
+};
+RiseStart rise_start(std::span<const double> F, std::size_t k) {
+  constexpr double kFraction = 0.1;
+  std::size_t low = k;
+  for (std::size_t i = k; i-- > 0;) {
+    if (F[i] < F[low]) {
+      low = i;
+    } else if (F[i] > F[low] + kFraction * (F[k] - F[low])) {
+      break;
+    }
+  }
+  const double level = F[low] + kFraction * (F[k] - F[low]);
+  std::size_t i = k;
+  while (i > low && F[i] > level) --i;
+  return {i, level};
+}
+
+// The force peak that sample `k` lies on or after: walking back from k, the highest F met before F
+// falls again by more than a tenth of (that peak - F[k]). k itself when F does not climb going
+// back (k is on a rise or a plateau).
+std::size_t peak_behind(std::span<const double> F, std::size_t k) {
+  constexpr double kFraction = 0.1;
+  std::size_t high = k;
+  for (std::size_t i = k; i-- > 0;) {
+    if (F[i] > F[high]) {
+      high = i;
+    } else if (F[i] < F[high] - kFraction * (F[high] - F[k])) {
+      break;
+    }
+  }
+  return high;
+}
+
 void check_options(const AnalysisOptions& o) {
   const auto bad = [](std::string_view what, double v) {
     return SeriesError(fmt::format("analysis option {} = {} must be positive", what, v));
@@ -284,6 +324,9 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     const double t_on = *a.t_onset;
     if (series.has(kContactRadius)) a.r_star = interpolate(t, series.column(kContactRadius), t_on);
     if (series.has(kIndentation)) a.e_star = interpolate(t, series.column(kIndentation), t_on);
+    if (series.has(kApexDisplacement)) {
+      a.e_apex_star = interpolate(t, series.column(kApexDisplacement), t_on);
+    }
     if (series.has(kHeight)) a.H_l = interpolate(t, series.column(kHeight), t_on);
     if (series.has(kPressure)) a.delta_p_onset = interpolate(t, series.column(kPressure), t_on);
 
@@ -304,12 +347,18 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
         }
       }
     }
+    // The snap's force can rise, and even peak, before the apex criterion fires (a gradual
+    // eversion): the window starts at the foot of the force's rise into the onset.
+    // (When the onset lies on the falling flank of a peak, the rise to that peak.)
+    const std::size_t first = rise_start(F, peak_behind(F, *onset)).index;
     const auto peak = static_cast<std::size_t>(
-        std::max_element(F.begin() + static_cast<std::ptrdiff_t>(*onset),
+        std::max_element(F.begin() + static_cast<std::ptrdiff_t>(first),
                          F.begin() + static_cast<std::ptrdiff_t>(last) + 1) -
         F.begin());
     a.F_star = F[peak];
     a.t_F_star = t[peak];
+    const auto rise = rise_start(F, peak);
+    a.t_force_rise = rise.index < peak ? crossing_time(t, F, rise.index + 1, rise.level) : t[peak];
     if (*a.F_star > 0.0) {
       find_launch(series, options, peak, last, a);
     } else {
@@ -324,7 +373,10 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
           "without having left the plate: F* is the largest force before that",
           t[last], options.onset_ratio));
     }
-    if (a.t_launch) a.t_star = *a.t_launch - t_on;
+    if (a.t_launch) {
+      a.t_star = *a.t_launch - t_on;
+      a.t_star_rise = *a.t_launch - *a.t_force_rise;
+    }
   }
 
   if (series.has(kHeight)) {
@@ -353,12 +405,14 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     const double h = c->shell.h;
     const double E = c->material.E;
     const double mg = c->popper.net_weight;
-    const double m = c->popper.moving_mass;
+    const double m = c->popper.moving_mass();
     if (R > 0.0 && h > 0.0 && E > 0.0) {
       if (a.r_star) a.alpha_r = *a.r_star / theory::r_c(h, R);
       if (a.e_star) a.alpha_e = *a.e_star / theory::e_c(h);
       if (a.F_star) a.alpha_F = *a.F_star / theory::F_c(E, h, R);
       if (a.t_star && m > 0.0) a.alpha_t = *a.t_star / theory::t_c(m, E, h, R);
+      if (a.t_star && c->popper.mass > 0.0)
+        a.alpha_t_own = *a.t_star / theory::t_c(c->popper.mass, E, h, R);
       if (a.H_s && mg > 0.0) a.H_s_scaled = *a.H_s / (E * h * h * h * h / (mg * R));
     }
     if (a.F_star && mg > 0.0) {
@@ -400,10 +454,14 @@ nlohmann::json to_json(const Analysis& a) {
       {"H_l", a.H_l, "m", "H_l, container height at the onset"},
       {"H_s", a.H_s, "m", "H_s = H - H_l"},
       {"delta_p_onset", a.delta_p_onset, "Pa", "delta_p at the onset"},
+      {"e_apex_star", a.e_apex_star, "m", "apex displacement at the onset (e* + w)"},
+      {"t_force_rise", a.t_force_rise, "s", "foot of the force's rise to F*"},
+      {"t_star_rise", a.t_star_rise, "s", "force rise to launch"},
       {"alpha_r", a.alpha_r, "1", "r* / sqrt(h R)"},
       {"alpha_e", a.alpha_e, "1", "e* / h"},
       {"alpha_F", a.alpha_F, "1", "F* / (E h^3 / R)"},
-      {"alpha_t", a.alpha_t, "1", "t* / sqrt(m R / (E h^2))"},
+      {"alpha_t", a.alpha_t, "1", "t* / sqrt(m R / (E h^2)), m = popper + counterweight"},
+      {"alpha_t_own", a.alpha_t_own, "1", "t* / sqrt(m_p R / (E h^2)), m_p = the popper alone"},
       {"H_s_scaled", a.H_s_scaled, "1", "H_s / (E h^4 / (m g R))"},
       {"F_star_over_mg", a.F_star_over_mg, "1", "F* / (m g)"},
   };

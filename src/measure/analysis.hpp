@@ -38,15 +38,24 @@ struct Analysis {
   OnsetSource onset_source = OnsetSource::None;
   std::optional<double> R;       // the radius used for w / R [m]
   std::optional<double> r_star;  // contact radius at the onset [m]
-  std::optional<double> e_star;  // apex displacement (indentation) at the onset [m]
+  // Indentation at the onset [m]: how far the plate has pushed into the undeformed shell (the rim's
+  // approach to the plate), the plane displacement e of the theory's contact problem.
+  std::optional<double> e_star;
+  // Apex displacement relative to the rim at the onset [m]: e* + w, since the apex still stands
+  // w = 0.03 R above the plate then.
+  std::optional<double> e_apex_star;
   // Force peak after the onset.
   std::optional<double> F_star;    // [N]
   std::optional<double> t_F_star;  // time of the peak [s]
+  // The foot of the force's rise to F* [s]: with a gradual eversion it comes before the apex
+  // criterion fires.
+  std::optional<double> t_force_rise;
   // Launch: F falls below the threshold and stays below it.
   std::optional<double> force_threshold;  // the one used [N]
   std::optional<double> force_noise;      // the noise estimate behind the default threshold [N]
   std::optional<double> t_launch;         // [s]
   std::optional<double> t_star;           // t_launch - t_onset [s]
+  std::optional<double> t_star_rise;      // t_launch - t_force_rise [s]
   // Heights of the container.
   std::optional<double> H;    // max z [m]
   std::optional<double> H_l;  // z at the onset [m]
@@ -58,10 +67,14 @@ struct Analysis {
   // cannot tell (no w column or R, and no contact column).
   std::optional<theory::Outcome> outcome;
   // With a case: measured prefactors and scaled quantities.
-  std::optional<double> alpha_r;         // r* / sqrt(h R)
-  std::optional<double> alpha_e;         // e* / h
-  std::optional<double> alpha_F;         // F* / (E h^3 / R)
-  std::optional<double> alpha_t;         // t* / sqrt(m R / (E h^2)), m = moving mass
+  std::optional<double> alpha_r;  // r* / sqrt(h R)
+  std::optional<double> alpha_e;  // e* / h
+  std::optional<double> alpha_F;  // F* / (E h^3 / R)
+  // t* / sqrt(m R / (E h^2)) with m the theory's inertia, popper + counterweight (a rigid wire).
+  std::optional<double> alpha_t;
+  // The same with the popper's own mass: the limit of a wire too soft to move the counterweight
+  // within t*.
+  std::optional<double> alpha_t_own;
   std::optional<double> H_s_scaled;      // H_s / (E h^4 / (m g R)), m g = net weight
   std::optional<double> F_star_over_mg;  // F* / (m g)
   std::vector<std::string> warnings;     // anything a reader should know, in plain words

@@ -28,6 +28,7 @@ constexpr std::array kKnownColumns{
     KnownColumn{kContactRadius, units::Dimension::Length},
     KnownColumn{kApexGap, units::Dimension::Length},
     KnownColumn{kIndentation, units::Dimension::Length},
+    KnownColumn{kApexDisplacement, units::Dimension::Length},
     KnownColumn{kPressure, units::Dimension::Pressure},
 };
 

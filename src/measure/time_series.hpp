@@ -38,14 +38,16 @@ std::optional<ContactState> parse_contact_state(std::string_view text);
 
 // The column names with a known meaning and dimension. Any other name is allowed and kept as a
 // plain number.
-inline constexpr std::string_view kTime = "t";            // time [s], required, increasing
-inline constexpr std::string_view kForce = "F";           // plate reaction, up on the popper [N]
-inline constexpr std::string_view kHeight = "z";          // container above its t = 0 place [m]
-inline constexpr std::string_view kContactRadius = "r";   // [m]
-inline constexpr std::string_view kApexGap = "w";         // outer apex above the plate [m]
-inline constexpr std::string_view kIndentation = "e";     // apex displacement [m]
-inline constexpr std::string_view kPressure = "delta_p";  // pressure difference [Pa]
-inline constexpr std::string_view kContact = "contact";   // text: none / ring / disk
+inline constexpr std::string_view kTime = "t";           // time [s], required, increasing
+inline constexpr std::string_view kForce = "F";          // plate reaction, up on the popper [N]
+inline constexpr std::string_view kHeight = "z";         // container above its t = 0 place [m]
+inline constexpr std::string_view kContactRadius = "r";  // [m]
+inline constexpr std::string_view kApexGap = "w";        // outer apex above the plate [m]
+// Indentation: the plate's displacement into the undeformed shell (the rim's approach) [m].
+inline constexpr std::string_view kIndentation = "e";
+inline constexpr std::string_view kApexDisplacement = "e_apex";  // apex relative to the rim [m]
+inline constexpr std::string_view kPressure = "delta_p";         // pressure difference [Pa]
+inline constexpr std::string_view kContact = "contact";          // text: none / ring / disk
 
 // The dimension of a known numeric column, or nothing for "contact" and unknown names.
 std::optional<units::Dimension> column_dimension(std::string_view name);

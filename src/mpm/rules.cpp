@@ -1,5 +1,6 @@
 #include "mpm/rules.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace snapjump::mpm {
@@ -23,6 +24,7 @@ void ClampRule::apply(SparseGrid& grid, const StepContext& ctx) {
 
 void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
   double normal = 0.0, tangential = 0.0;
+  loaded_.clear();
   for (std::size_t b = 0; b < grid.num_blocks(); ++b) {
     // Only blocks that hold a node layer z = 0, -dx, ..., -(layers - 1) dx.
     const std::int64_t k0 = grid.block_coords(b)[2] * kBlock;
@@ -33,6 +35,7 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
       if (c[2] > 0 || c[2] <= -layers_) continue;
       const double dpn = -grid.nodes[a].pz;  // normal impulse given by the plate (upward)
       grid.nodes[a].pz = 0.0;
+      loaded_.push_back(c);
       normal += dpn;
       const double pt = std::hypot(grid.nodes[a].px, grid.nodes[a].py);
       if (pt > 0.0 && mu_ > 0.0) {
@@ -45,6 +48,25 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
   }
   force_ = normal / ctx.dt;
   friction_ = tangential / ctx.dt;
+  std::sort(loaded_.begin(), loaded_.end());
+}
+
+double plate_share(const std::vector<std::array<std::int64_t, 3>>& loaded, double dx, double x,
+                   double y, double z) {
+  const auto wx = bspline_weights(x / dx), wy = bspline_weights(y / dx),
+             wz = bspline_weights(z / dx);
+  double share = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        const std::array<std::int64_t, 3> c{wx.base + i, wy.base + j, wz.base + k};
+        if (std::binary_search(loaded.begin(), loaded.end(), c)) {
+          share += wx.w[i] * wy.w[j] * wz.w[k];
+        }
+      }
+    }
+  }
+  return share;
 }
 
 }  // namespace snapjump::mpm

@@ -3,8 +3,10 @@
 // so a tilted or moving plate, or another obstacle, is a new class, not an edit of the step.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "mpm/grid.hpp"
 
@@ -65,12 +67,23 @@ class PlateRule final : public GridRule {
   // Reaction force on the body from the plate in the last step (up is positive) [N].
   [[nodiscard]] double force() const { return force_; }
   [[nodiscard]] double friction_force() const { return friction_; }
+  // Grid coordinates of the nodes that took a normal impulse in the last step: where the plate
+  // carries load.
+  [[nodiscard]] const std::vector<std::array<std::int64_t, 3>>& loaded_nodes() const {
+    return loaded_;
+  }
 
  private:
   double mu_;
   int layers_;
   double force_ = 0.0;
   double friction_ = 0.0;
+  std::vector<std::array<std::int64_t, 3>> loaded_;
 };
+
+// How much of a particle at x is held by the plate: the sum of its quadratic B-spline weights on
+// the nodes `loaded` (PlateRule::loaded_nodes(), sorted), in [0, 1]; dx the grid spacing.
+double plate_share(const std::vector<std::array<std::int64_t, 3>>& loaded, double dx, double x,
+                   double y, double z);
 
 }  // namespace snapjump::mpm

@@ -353,7 +353,6 @@ std::optional<double> snap_boundary_weight(config::Case c, bool lower_end,
                                            const theory::ContactConstants& k) {
   const auto margin = [&](double mg) {
     c.popper.net_weight = mg;
-    c.popper.moving_mass = mg / config::kStandardGravity;
     const auto p = theory::predict(c, k);
     return lower_end ? p.snap_margin.lo : p.snap_margin.hi;
   };
@@ -487,8 +486,8 @@ std::string phase(const Table& t, const fs::path& table, FigureResult& result,
   if (aF) gp += fmt::format("# alpha_F = {} .. {}\n", number(aF->first), number(aF->second));
   if (!snap_case.empty()) {
     gp += fmt::format(
-        "# at the case {} with h = (h/R) R, and popper.moving_mass = net_weight / g\n"
-        "# while bisecting (the snap margin does not depend on the moving mass).\n",
+        "# at the case {} with h = (h/R) R while bisecting (the snap margin does not depend on\n"
+        "# the moving mass).\n",
         printable(snap_case));
   } else {
     gp += "# (not drawn: no case file of a run was found).\n";

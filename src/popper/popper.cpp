@@ -15,24 +15,33 @@ namespace snapjump::popper {
 namespace {
 
 constexpr double kG = config::kStandardGravity;
+// A particle touches the plate when at least this share of its stencil weight is on loaded nodes.
+constexpr double kTouchingShare = 0.5;
 
 }  // namespace
+
+double grid_cells_per_thickness(config::Resolution r) {
+  switch (r) {
+    case config::Resolution::Coarse:
+      return kCellsPerThicknessCoarse;
+    case config::Resolution::Default:
+      return kCellsPerThicknessDefault;
+    case config::Resolution::Fine:
+      return kCellsPerThicknessFine;
+  }
+  return kCellsPerThicknessDefault;
+}
 
 Numerics resolve_numerics(const config::Case& c) {
   Numerics n;
   n.cap = mesh::cap_spec(c);
-  double dx_fraction = 0.025;  // grid spacing / R
-  switch (c.numerics.resolution) {
-    case config::Resolution::Coarse:
-    case config::Resolution::Default:
-      break;
-    case config::Resolution::Fine:
-      dx_fraction = 0.02;
-      break;
-  }
-  // The grid acts on the plate within about one cell of it, so the cell must be well below the
-  // onset distance 0.03 R, and no coarser than the elements.
-  n.dx = std::min(dx_fraction * c.shell.R, n.cap.element_size);
+  // The plate acts on a particle whose stencil holds a plate node, i.e. from up to 1.5 cells
+  // away, and a shell pressed on it stands a fraction of a cell off (docs/validation.md,
+  // "Standoff"): the cell is a fraction of the thickness h, which sets the scale of the
+  // indentation e* = alpha_e h, never of R. No coarser than the elements either.
+  n.dx =
+      c.numerics.grid_spacing.value_or(c.shell.h / grid_cells_per_thickness(c.numerics.resolution));
+  n.dx = std::min(n.dx, n.cap.element_size);
   if (c.numerics.end_time) n.end_time = *c.numerics.end_time;
   // Damping of the preparation phases: a third of the shell's membrane frequency sqrt(E/rho)/R.
   n.prep_damping = 0.3 * std::sqrt(c.material.E / c.material.rho) / c.shell.R;
@@ -40,11 +49,13 @@ Numerics resolve_numerics(const config::Case& c) {
 }
 
 std::vector<std::string> sample_columns() {
-  return {"t", "z", "r", "w", "e", "F", "delta_p", "vz", "kinetic", "elastic", "gravitational"};
+  return {"t", "z",       "r",  "w",       "e",       "e_apex",
+          "F", "delta_p", "vz", "kinetic", "elastic", "gravitational"};
 }
 
 std::vector<double> sample_values(const Sample& s) {
-  return {s.t, s.z, s.r, s.w, s.e, s.F, s.delta_p, s.vz, s.kinetic, s.elastic, s.gravitational};
+  return {s.t, s.z,       s.r,  s.w,       s.e,       s.e_apex,
+          s.F, s.delta_p, s.vz, s.kinetic, s.elastic, s.gravitational};
 }
 
 void check_simulable(const config::Case& c) {
@@ -55,18 +66,35 @@ void check_simulable(const config::Case& c) {
   }
 }
 
-Popper::Popper(const config::Case& c, const Numerics& n)
-    : case_(c), numerics_(n), gas_(c.gas.p0, c.gas.alpha_n, c.gas.beta_n) {
+namespace {
+
+std::unique_ptr<fem::Body> make_shell(const config::Case& c, const Numerics& n) {
   check_simulable(c);
-  body_ = std::make_unique<fem::Body>(
+  return std::make_unique<fem::Body>(
       mesh::make_cap_mesh(n.cap),
       fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+}
+
+}  // namespace
+
+Popper::Popper(const config::Case& c, const Numerics& n)
+    : case_(c),
+      numerics_(n),
+      body_(make_shell(c, n)),
+      // The paper's reference state: the undeformed popper filled with air at p0.
+      gas_(c.gas.p0, c.gas.alpha_n, c.gas.beta_n,
+           c.gas.container_volume + body_->cavity_volume(body_->mesh().nodes)) {
   shell_mass_ = body_->total_mass();
-  if (c.popper.moving_mass <= shell_mass_) {
+  if (c.popper.wire_stiffness && !(c.popper.counterweight() > 0.0)) {
+    throw config::CaseError(
+        "popper.wire_stiffness is set but there is no counterweight (popper.mass = net_weight / "
+        "g): remove the wire or give a heavier popper.mass");
+  }
+  if (c.popper.mass <= shell_mass_) {
     throw config::CaseError(fmt::format(
-        "popper.moving_mass = {:.4g} kg is not more than the shell's own mass {:.4g} kg: the "
-        "container and counterweight need some inertia",
-        c.popper.moving_mass, shell_mass_));
+        "popper.mass = {:.4g} kg is not more than the shell's own mass {:.4g} kg: the popper's "
+        "mass is the shell's plus the container's and the rail's",
+        c.popper.mass, shell_mass_));
   }
   delta_p_j_ = theory::jump_pressure(c);
   const auto& X = body_->mesh().nodes;
@@ -94,7 +122,7 @@ Popper::Popper(const config::Case& c, const Numerics& n)
   // The grid bound assumes speeds up to 2 m/s (a jump of 20 cm); faster particles stop the run
   // with a StepError from the stepper's own CFL check.
   time_step_ = mpm::choose_time_step(body_->stable_time_step(n.cfl), n.dx, 2.0, 0.5);
-  container_.mass = c.popper.moving_mass - shell_mass_;
+  container_.mass = grounding_mass();
 }
 
 double Popper::outer_rim_z(const mesh::Points& x) const {
@@ -103,11 +131,30 @@ double Popper::outer_rim_z(const mesh::Points& x) const {
   return z / static_cast<double>(outer_rim_.size());
 }
 
+double Popper::grounding_mass() const {
+  // The grounding is quasi-static (only its end state matters): the container's inertia is scaled
+  // to its share of the net weight, so that it settles on the shell as fast whatever the
+  // counterweight. release() gives it the apparatus's inertia.
+  return std::max(case_.popper.net_weight / kG, 2.0 * shell_mass_) - shell_mass_;
+}
+
 void Popper::update_container_force(double damping) {
-  // Its share of the net weight, the gas on the hole (inside minus outside pressure), damping.
+  // Its share of the net weight, the gas on the hole (inside minus outside pressure), damping,
+  // and with an elastic wire the wire's tension beyond the counterweight's weight.
   container_.applied_force = -(case_.popper.net_weight - shell_mass_ * kG) -
                              gas_.delta_p() * hole_area_ -
-                             damping * container_.mass * container_.vz;
+                             damping * container_.mass * container_.vz + wire_tension();
+}
+
+void Popper::set_apparatus_inertia() {
+  const bool elastic_wire = case_.popper.wire_stiffness.has_value();
+  container_.mass = (elastic_wire ? case_.popper.mass : case_.popper.moving_mass()) - shell_mass_;
+  counterweight_.mass = case_.popper.counterweight();
+}
+
+double Popper::wire_tension() const {
+  if (!case_.popper.wire_stiffness || !gas_.valve_open()) return 0.0;
+  return *case_.popper.wire_stiffness * (counterweight_.z - container_.z);
 }
 
 void Popper::advance_gas() {
@@ -225,7 +272,8 @@ void Popper::build_stepper(mpm::Particles particles, double damping) {
 
 namespace {
 
-constexpr char kStateMagic[] = "snapjump-popper-state-1";
+// Version 2: J_n referred to the undeformed popper (version 1 referred it to the release).
+constexpr char kStateMagic[] = "snapjump-popper-state-2";
 
 template <typename T>
 void put(std::ostream& out, const T& v) {
@@ -262,6 +310,8 @@ void Popper::save_state(std::ostream& out) const {
   put(out, container_.z);
   put(out, container_.vz);
   put(out, container_.clamp_force);
+  put(out, counterweight_.z);
+  put(out, counterweight_.vz);
   put(out, gas_.delta_p());
   put(out, gas_.J_n());
   put(out, gas_.J_n_rate());
@@ -293,12 +343,20 @@ void Popper::load_state(std::istream& in) {
   get(in, container_.z);
   get(in, container_.vz);
   get(in, container_.clamp_force);
+  set_apparatus_inertia();
+  get(in, counterweight_.z);
+  get(in, counterweight_.vz);
   double dp = 0, J_n = 0, J_n_rate = 0, V_ref = 0;
   get(in, dp);
   get(in, J_n);
   get(in, J_n_rate);
   get(in, V_ref);
-  gas_.restore(dp, true, J_n, J_n_rate, V_ref);
+  if (!(std::abs(V_ref / gas_.V_ref() - 1.0) < 1e-12)) {
+    throw std::runtime_error(fmt::format(
+        "the checkpoint's gas reference volume {:.6g} m^3 is not this popper's {:.6g} m^3", V_ref,
+        gas_.V_ref()));
+  }
+  gas_.restore(dp, true, J_n, J_n_rate);
   get(in, z_release_);
   get(in, impulse_);
   get(in, impulse_time_);
@@ -315,6 +373,11 @@ void Popper::release() {
   std::fill(p.v.z.begin(), p.v.z.end(), 0.0);
   std::fill(p.C.begin(), p.C.end(), 0.0);
   container_.vz = 0.0;
+  // From here on the inertia is the apparatus's: with a rigid wire the counterweight moves with
+  // the popper; with an elastic one it is a second body, at rest in its equilibrium.
+  set_apparatus_inertia();
+  counterweight_.z = container_.z;
+  counterweight_.vz = 0.0;
   stepper_->reset_time();
   z_release_ = container_.z;
   gas_.open_valve(body_->cavity_volume(p.x) + case_.gas.container_volume);
@@ -324,7 +387,14 @@ void Popper::release() {
 
 void Popper::step() {
   update_container_force(0.0);
+  const double tension = wire_tension();
   stepper_->step();
+  if (case_.popper.wire_stiffness) {
+    // The counterweight, in the popper's frame (z up when the counterweight goes down), pulled
+    // back by the wire's tension beyond its weight.
+    counterweight_.vz += stepper_->dt() * -tension / counterweight_.mass;
+    counterweight_.z += stepper_->dt() * counterweight_.vz;
+  }
   advance_gas();
   impulse_ += plate_->force() * stepper_->dt();
   impulse_time_ += stepper_->dt();
@@ -341,11 +411,18 @@ Sample Popper::sample() {
   s.F = impulse_time_ > 0.0 ? impulse_ / impulse_time_ : plate_->force();
   impulse_ = 0.0;
   impulse_time_ = 0.0;
-  // Contact: outer particles within the plate's reach (1.5 cells: their stencil touches z = 0).
-  const double band = 1.5 * stepper_->dx();
+  // Contact, as the camera sees it: the outer particles that the plate carries, i.e. that have at
+  // least half of their stencil weight on the nodes the plate pushed in the last step. r is the
+  // outermost; the contact is a disk when the apex is among them.
+  const auto& loaded = plate_->loaded_nodes();
+  const double dx = stepper_->dx();
+  const auto touching = [&](int a) {
+    return p.x.z[a] < 1.5 * dx &&
+           mpm::plate_share(loaded, dx, p.x.x[a], p.x.y[a], p.x.z[a]) >= kTouchingShare;
+  };
   bool any = false;
   for (int a : mesh.outer) {
-    if (p.x.z[a] < band) {
+    if (touching(a)) {
       any = true;
       s.r = std::max(s.r, std::hypot(p.x.x[a], p.x.y[a]));
     }
@@ -353,13 +430,24 @@ Sample Popper::sample() {
   const int apex = mesh.apex;
   s.w = p.x.z[apex];
   s.contact = !any ? measure::ContactState::None
-                   : (s.w < band ? measure::ContactState::Disk : measure::ContactState::Ring);
-  s.e = depth_outer_ - (outer_rim_z(p.x) - p.x.z[apex]);
+                   : (touching(apex) ? measure::ContactState::Disk : measure::ContactState::Ring);
+  const double rim = outer_rim_z(p.x);
+  s.e = depth_outer_ - rim;
+  s.e_apex = depth_outer_ - (rim - p.x.z[apex]);
   s.kinetic = stepper_->kinetic_energy() + 0.5 * container_.mass * container_.vz * container_.vz;
+  if (case_.popper.wire_stiffness) {
+    s.kinetic += 0.5 * counterweight_.mass * counterweight_.vz * counterweight_.vz;
+  }
   s.elastic = body_->strain_energy(p.x);
   double pot = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) pot += p.mass[i] * kG * p.x.z[i];
+  // The counterweight's weight is the popper's less mg; an elastic wire adds its stretch's
+  // energy beyond the static one.
   s.gravitational = pot + (case_.popper.net_weight - shell_mass_ * kG) * container_.z;
+  if (case_.popper.wire_stiffness) {
+    const double stretch = counterweight_.z - container_.z;
+    s.gravitational += 0.5 * *case_.popper.wire_stiffness * stretch * stretch;
+  }
   return s;
 }
 

@@ -31,13 +31,20 @@ struct Numerics {
   double prep_damping = 0.0;          // [1/s] mass-proportional damping of phases 1-3
 };
 Numerics resolve_numerics(const config::Case& c);
+// The presets' grid spacing is h over this many cells (numerics.grid_spacing overrides it).
+inline constexpr double kCellsPerThicknessCoarse = 4.0;
+inline constexpr double kCellsPerThicknessDefault = 8.0;
+inline constexpr double kCellsPerThicknessFine = 16.0;
+double grid_cells_per_thickness(config::Resolution r);
 
 // What the simulator needs beyond a valid case (nu < 1/2). Throws config::CaseError.
 void check_simulable(const config::Case& c);
 
 // One sample of what the experiment measures, plus energies.
 struct Sample {
-  double t = 0, z = 0, r = 0, w = 0, e = 0, F = 0, delta_p = 0, vz = 0;
+  // e: indentation (undeformed outer depth less the outer rim's height above the plate);
+  // e_apex: apex displacement relative to the outer rim (e + w).
+  double t = 0, z = 0, r = 0, w = 0, e = 0, e_apex = 0, F = 0, delta_p = 0, vz = 0;
   measure::ContactState contact = measure::ContactState::None;
   double kinetic = 0, elastic = 0, gravitational = 0;
 };
@@ -82,6 +89,7 @@ class Popper {
   [[nodiscard]] const fem::Body& body() const { return *body_; }
   [[nodiscard]] const mpm::Stepper& stepper() const { return *stepper_; }
   [[nodiscard]] const mpm::RigidBody& container() const { return container_; }
+  [[nodiscard]] const mpm::RigidBody& counterweight() const { return counterweight_; }
   [[nodiscard]] const Gas& gas() const { return gas_; }
   [[nodiscard]] const config::Case& input() const { return case_; }
   [[nodiscard]] const Numerics& numerics() const { return numerics_; }
@@ -93,6 +101,11 @@ class Popper {
 
  private:
   void update_container_force(double damping);
+  [[nodiscard]] double grounding_mass() const;
+  // The container's mass from the release on (with the counterweight's with a rigid wire).
+  void set_apparatus_inertia();
+  // Tension of an elastic wire beyond the counterweight's weight, on the container [N].
+  [[nodiscard]] double wire_tension() const;
   // Mean height of the outer rim circle (the rim plane of the outer surface) at positions x.
   [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
   void build_stepper(mpm::Particles particles, double damping);
@@ -105,6 +118,9 @@ class Popper {
   std::unique_ptr<mpm::BodyForces> forces_;
   std::unique_ptr<mpm::Stepper> stepper_;
   mpm::RigidBody container_;
+  // With an elastic wire: the counterweight, its z being how far the popper would have risen
+  // with a rigid wire (its own fall); unused with a rigid wire.
+  mpm::RigidBody counterweight_;
   mpm::PlateRule* plate_ = nullptr;
   double delta_p_j_ = 0.0;
   mpm::TimeStep time_step_;

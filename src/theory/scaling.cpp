@@ -97,14 +97,16 @@ Prediction predict(const config::Case& c, const ContactConstants& constants) {
   p.shell_mass = shell_mass(R, h, phi, c.material.rho);
   p.cavity_volume = cavity_volume(R, h, phi);
   p.net_weight = mg;
-  p.moving_mass = c.popper.moving_mass;
+  p.popper_mass = c.popper.mass;
+  p.counterweight = c.popper.counterweight();
+  p.moving_mass = c.popper.moving_mass();
   p.zoelly_pc = zoelly_pressure(E, h, R, nu);
   p.delta_p_j = jump_pressure(c);
 
   p.r_c = r_c(h, R);
   p.e_c = e_c(h);
   p.F_c = F_c(E, h, R);
-  p.t_c = t_c(c.popper.moving_mass, E, h, R);
+  p.t_c = t_c(p.moving_mass, E, h, R);
 
   const auto& a = p.alpha = prefactor_bounds(constants, nu);
   p.r_star = {a.alpha_r.lo * p.r_c, a.alpha_r.hi * p.r_c};

@@ -61,7 +61,9 @@ struct Prediction {
   double rim_radius = 0.0, cap_depth = 0.0, shell_volume = 0.0, shell_mass = 0.0;
   double cavity_volume = 0.0;
   // loads
-  double net_weight = 0.0, moving_mass = 0.0;
+  // The apparatus: the popper's own mass, the counterweight and their sum, the inertia m that
+  // enters t_c (a rigid wire: the plate's force accelerates both).
+  double net_weight = 0.0, popper_mass = 0.0, counterweight = 0.0, moving_mass = 0.0;
   double zoelly_pc = 0.0, delta_p_j = 0.0;
   // scales
   double r_c = 0.0, e_c = 0.0, F_c = 0.0, t_c = 0.0;

@@ -64,8 +64,12 @@ TEST(CaseFile, DefaultsFromTheSimulationGuide) {
   EXPECT_DOUBLE_EQ(c.gas.p0, 101325.0);
   EXPECT_DOUBLE_EQ(c.gas.alpha_n, 1.0e-3);
   EXPECT_DOUBLE_EQ(c.gas.beta_n, 5.0e-5);
-  // moving mass defaults to the net weight over standard gravity: 0.48 / 9.80665 kg
-  EXPECT_NEAR(c.popper.moving_mass, 0.048946378, 1e-9);
+  // The apparatus: a 300 g popper, a counterweight lighter by mg / g = 0.48 / 9.80665 kg, and
+  // their sum as the inertia; a rigid wire.
+  EXPECT_DOUBLE_EQ(c.popper.mass, 0.300);
+  EXPECT_NEAR(c.popper.counterweight(), 0.300 - 0.048946378, 1e-9);
+  EXPECT_NEAR(c.popper.moving_mass(), 0.600 - 0.048946378, 1e-9);
+  EXPECT_FALSE(c.popper.wire_stiffness.has_value());
   EXPECT_FALSE(c.protocol.delta_p_j.has_value());
   EXPECT_DOUBLE_EQ(c.protocol.delta_p_j_over_pc, 0.5);
   // The program says which defaults it used.
@@ -75,7 +79,7 @@ TEST(CaseFile, DefaultsFromTheSimulationGuide) {
   EXPECT_TRUE(has("material.nu = 0.45"));
   EXPECT_TRUE(has("shell.phi = 80 deg"));
   EXPECT_TRUE(has("friction.mu = 0.3"));
-  EXPECT_TRUE(has("popper.moving_mass = net_weight / g"));
+  EXPECT_TRUE(has("popper.mass = 300 g (net_weight / g when heavier: no counterweight)"));
   EXPECT_FALSE(has("shell.R = "));
 }
 
@@ -91,7 +95,8 @@ nu = 0.49
 rho = "1.1 g/cm^3"
 [popper]
 net_weight = "300 mN"
-moving_mass = "60 g"
+mass = "60 g"
+wire_stiffness = "2 kN/m"
 [friction]
 mu = 0
 [gas]
@@ -116,7 +121,9 @@ end_time = "0.5 s"
   EXPECT_DOUBLE_EQ(c.material.nu, 0.49);
   EXPECT_NEAR(c.material.rho, 1100.0, 1e-9);
   EXPECT_NEAR(c.popper.net_weight, 0.3, 1e-15);
-  EXPECT_NEAR(c.popper.moving_mass, 0.06, 1e-15);
+  EXPECT_NEAR(c.popper.mass, 0.06, 1e-15);
+  EXPECT_NEAR(c.popper.moving_mass(), 0.12 - 0.3 / 9.80665, 1e-15);
+  EXPECT_EQ(c.popper.wire_stiffness, 2000.0);
   EXPECT_DOUBLE_EQ(c.friction.mu, 0.0);
   EXPECT_NEAR(c.gas.container_volume, 1e-4, 1e-18);
   EXPECT_DOUBLE_EQ(c.gas.p0, 1e5);
@@ -190,9 +197,11 @@ TEST(CaseFile, UnphysicalValues) {
                {"case.toml:7", "material.rho", "must be positive"});
   expect_error(replace(kMinimal, "net_weight = \"0.48 N\"", "net_weight = \"0 N\""),
                {"case.toml:9", "popper.net_weight", "must be positive"});
-  expect_error(kMinimal + "moving_mass = \"-1 g\"\n", {"popper.moving_mass", "must be positive"});
-  expect_error(kMinimal + "moving_mass = \"10 g\"\n",
-               {"popper.moving_mass", "at least net_weight / g"});
+  expect_error(kMinimal + "mass = \"-1 g\"\n", {"popper.mass", "must be positive"});
+  expect_error(kMinimal + "mass = \"10 g\"\n", {"popper.mass", "at least net_weight / g"});
+  expect_error(kMinimal + "wire_stiffness = \"1 N\"\n", {"popper.wire_stiffness", "stiffness"});
+  expect_error(kMinimal + "wire_stiffness = \"-1 N/m\"\n",
+               {"popper.wire_stiffness", "must be positive"});
   expect_error(kMinimal + "[friction]\nmu = -0.1\n", {"case.toml:11", "friction.mu", "negative"});
   expect_error(kMinimal + "[protocol]\ndelta_p_j = \"2 kPa\"\ndelta_p_j_over_pc = 0.5\n",
                {"not both"});
@@ -229,7 +238,8 @@ TEST(CaseFile, WrittenInSIAndReadBackTheSame) {
   EXPECT_EQ(r.material.nu, c.material.nu);
   EXPECT_EQ(r.material.rho, c.material.rho);
   EXPECT_EQ(r.popper.net_weight, c.popper.net_weight);
-  EXPECT_EQ(r.popper.moving_mass, c.popper.moving_mass);
+  EXPECT_EQ(r.popper.mass, c.popper.mass);
+  EXPECT_EQ(r.popper.wire_stiffness, c.popper.wire_stiffness);
   EXPECT_EQ(r.friction.mu, c.friction.mu);
   EXPECT_EQ(r.gas.container_volume, c.gas.container_volume);
   EXPECT_EQ(r.gas.alpha_n, c.gas.alpha_n);

@@ -130,6 +130,10 @@ TEST(Analysis, Jump) {
   EXPECT_NEAR(*a.force_noise, 0.0, 1e-15);
   EXPECT_NEAR(*a.t_launch, 25.92e-3, 1e-10);
   EXPECT_NEAR(*a.t_star, 5.87e-3, 1e-10);
+  // F rises linearly from 0.5 N at 21 ms to 2 N at 22 ms: a tenth of the rise at 21.1 ms.
+  ASSERT_TRUE(a.t_force_rise && a.t_star_rise);
+  EXPECT_NEAR(*a.t_force_rise, 21.1e-3, 1e-9);
+  EXPECT_NEAR(*a.t_star_rise, 25.92e-3 - 21.1e-3, 1e-9);
   EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-12);
   EXPECT_NEAR(*a.H_l, 20.05e-3 * kV0, 1e-12);
   EXPECT_NEAR(*a.H_s, 45.95e-3 * kV0, 1e-12);
@@ -137,6 +141,42 @@ TEST(Analysis, Jump) {
   EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
   // Without a case there are no prefactors.
   EXPECT_FALSE(a.alpha_F);
+}
+
+// A gradual eversion: the force rises and peaks before the apex criterion fires. F* is the snap's
+// peak all the same, and the rise's start comes before the onset.
+TEST(Analysis, ForcePeakBeforeTheApexOnset) {
+  Spec spec;
+  // Rest at 0.5 N, a linear rise from 15 ms to a 2.5 N peak at 19 ms, then down to 0 at 24 ms
+  // (the onset is at 20.05 ms, after the peak).
+  spec.F = [](double t) {
+    if (t < 15e-3) return 0.5;
+    if (t < 19e-3) return 0.5 + 2.0 * (t - 15e-3) / 4e-3;
+    if (t < 24e-3) return 2.5 * (1.0 - (t - 19e-3) / 5e-3);
+    return 0.0;
+  };
+  const auto a = analyze(make(spec), with_R());
+  ASSERT_TRUE(a.F_star && a.t_F_star && a.t_force_rise && a.t_launch);
+  EXPECT_NEAR(*a.F_star, 2.5, 1e-12);
+  EXPECT_NEAR(*a.t_F_star, 19e-3, 1e-12);
+  EXPECT_NEAR(*a.t_force_rise, 15.4e-3, 1e-9);  // 0.5 + 0.1 * 2 N = 0.7 N
+  EXPECT_LT(*a.t_force_rise, *a.t_onset);
+  // Launch where F falls below 0.02 F* = 0.05 N: 19 ms + 5 ms * 0.98.
+  EXPECT_NEAR(*a.t_launch, 23.9e-3, 1e-9);
+}
+
+// e is the indentation (the theory's plane displacement); e_apex, when given, is reported beside.
+TEST(Analysis, IndentationAndApexDisplacement) {
+  TimeSeries s({"t", "F", "w", "e", "e_apex"}, false);
+  for (int i = 0; i <= 400; ++i) {
+    const double t = i * kDt;
+    const double w = w_ref(t), e = 0.1 * t;
+    s.add_row({t, F_jump(t), w, e, e + w});
+  }
+  const auto a = analyze(s, with_R());
+  ASSERT_TRUE(a.e_star && a.e_apex_star);
+  EXPECT_NEAR(*a.e_star, 0.1 * kOnset, 1e-12);
+  EXPECT_NEAR(*a.e_apex_star, 0.1 * kOnset + 0.9e-3, 1e-12);  // w = 0.03 R at the onset
 }
 
 TEST(Analysis, ExplicitThreshold) {
@@ -406,7 +446,7 @@ config::Case paper_case(double net_weight) {
   c.material.E = 1.2e6;
   c.material.nu = 0.5;
   c.popper.net_weight = net_weight;
-  c.popper.moving_mass = 0.049;
+  c.popper.mass = 0.300;
   return c;
 }
 
@@ -421,8 +461,12 @@ TEST(Analysis, PrefactorsWithCase) {
   EXPECT_NEAR(*a.alpha_e, 4.01 / 2.0, 1e-9);
   // E h^3 / R = 1.2e6 * 8e-9 / 0.03 = 0.32 N
   EXPECT_NEAR(*a.alpha_F, 2.0 / 0.32, 1e-9);
-  // sqrt(m R / (E h^2)) = sqrt(0.049 * 0.03 / (1.2e6 * 4e-6)) = sqrt(3.0625e-4) = 17.5 ms
-  EXPECT_NEAR(*a.alpha_t, 5.87 / 17.5, 1e-7);
+  // m = popper + counterweight = 0.3 kg + (0.3 kg - 0.48 N / g) = 0.551054 kg:
+  // sqrt(m R / (E h^2)) = sqrt(0.551054 * 0.03 / (1.2e6 * 4e-6)) = 58.6860 ms
+  EXPECT_NEAR(*a.alpha_t, 5.87 / 58.6860, 1e-5);
+  // the popper alone: sqrt(0.3 * 0.03 / 4.8) = 43.3013 ms
+  ASSERT_TRUE(a.alpha_t_own);
+  EXPECT_NEAR(*a.alpha_t_own, 5.87 / 43.3013, 1e-5);
   // E h^4 / (m g R) = 1.2e6 * 1.6e-11 / (0.48 * 0.03) = 1.3333 mm
   EXPECT_NEAR(*a.H_s_scaled, 45.95e-3 * kV0 / (1.92e-5 / 0.0144), 1e-9);
   EXPECT_NEAR(*a.F_star_over_mg, 2.0 / 0.48, 1e-12);

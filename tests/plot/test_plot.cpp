@@ -178,7 +178,6 @@ fs::path make_sweep(const fs::path& dir, bool with_cases = true, const std::stri
   for (int i = 0; i < 6; ++i) {
     auto c = config::default_case();
     c.popper.net_weight = mgs[i];
-    c.popper.moving_mass = mgs[i] / config::kStandardGravity;
     c.shell.h = hs[i];
     c.friction.mu = mus[i];
     const auto p = theory::predict(c, k);
@@ -204,7 +203,7 @@ fs::path make_sweep(const fs::path& dir, bool with_cases = true, const std::stri
         std::to_string(c.material.rho),
         std::to_string(mus[i]),
         std::to_string(mg),
-        std::to_string(c.popper.moving_mass),
+        std::to_string(c.popper.moving_mass()),
         std::to_string(p.delta_p_j),
         std::to_string(p.zoelly_pc),
         std::to_string(p.r_c),

@@ -104,7 +104,6 @@ TEST(Prefactors, ConvertedAtAnotherNu) {
 config::Case default_case_with(double net_weight) {
   auto c = config::default_case();
   c.popper.net_weight = net_weight;
-  c.popper.moving_mass = net_weight / config::kStandardGravity;
   return c;
 }
 

@@ -19,11 +19,13 @@ namespace snapjump::testing {
 
 struct ShellOverPlate {
   static constexpr double R = 0.030, h = 0.002, E = 1.2e6, nu = 0.45, rho = 1160.0;
-  static constexpr double dx = 0.025 * R;
-  static constexpr double gap = 2.0 * dx;  // apex height above the plate at the start [m]
+  static constexpr double kDefaultDx = 0.025 * R;
 
-  explicit ShellOverPlate(double mu) {
-    auto m = mesh::make_cap_mesh({R, h, 80.0 * std::numbers::pi / 180, std::sqrt(h * R) / 2, 1});
+  // mu: friction; cell: the grid spacing [m]; element_size: the mesh's [m].
+  explicit ShellOverPlate(double mu, double cell = kDefaultDx,
+                          double element_size = std::sqrt(h * R) / 2)
+      : dx(cell), gap(2.0 * cell) {
+    auto m = mesh::make_cap_mesh({R, h, 80.0 * std::numbers::pi / 180, element_size, 1});
     const auto lowest = std::min_element(m.nodes.z.begin(), m.nodes.z.end());
     apex = static_cast<std::size_t>(lowest - m.nodes.z.begin());
     mesh::translate_z(m, gap - *lowest);
@@ -60,6 +62,8 @@ struct ShellOverPlate {
   // Height of the shell's outer apex above the plate [m].
   [[nodiscard]] double apex_height() const { return stepper->particles().x.z[apex]; }
 
+  double dx;   // grid spacing [m]
+  double gap;  // apex height above the plate at the start [m]
   std::unique_ptr<fem::Body> shell;
   std::unique_ptr<mpm::BodyForces> forces;
   std::unique_ptr<mpm::Stepper> stepper;

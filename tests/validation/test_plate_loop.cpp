@@ -37,14 +37,14 @@ TEST_P(PlateLoop, TheRingToDiskTransitionFallsWithinTheContactBounds) {
   std::vector<Sample> samples;
   bool unloading = false;
   const auto turn_at_the_bottom = [&] {
-    if (!unloading && -setup.rim.z > P::gap + travel) {
+    if (!unloading && -setup.rim.z > setup.gap + travel) {
       unloading = true;
       setup.rim.vz = v0;
     }
   };
   for (double next = interval; !unloading || setup.rim.z < 0.0; next += interval) {
     const double F = setup.mean_force_until(next, turn_at_the_bottom);
-    samples.push_back({-setup.rim.z - P::gap, F, setup.apex_height(), unloading});
+    samples.push_back({-setup.rim.z - setup.gap, F, setup.apex_height(), unloading});
   }
   if (const char* prefix = std::getenv("SNAPJUMP_PLATE_LOOP_CSV")) {
     const std::string path = std::string(prefix) + "-mu" + std::to_string(mu).substr(0, 3) + ".csv";

@@ -21,8 +21,9 @@ namespace {
 // quadratic element through h, cells of 0.025 R), its rim lowered at 0.05 m/s onto the plate.
 TEST(ShellOnPlate, ForceAgainstIndentationFollowsTheContactSolver) {
   using P = testing::ShellOverPlate;
-  const double R = P::R, h = P::h, nu = P::nu, E = P::E, dx = P::dx, v0 = 0.05;
+  const double R = P::R, h = P::h, nu = P::nu, E = P::E, v0 = 0.05;
   P setup(0.3);
+  const double dx = setup.dx;
   auto& rim = setup.rim;
   rim.vz = -v0;
 
