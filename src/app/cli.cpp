@@ -230,6 +230,7 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
     row("alpha_F = F* / (E h^3 / R)", a.alpha_F, 1.0, "");
     row("alpha_t = t* / sqrt(m R / (E h^2)), m = popper + counterweight", a.alpha_t, 1.0, "");
     row("  the same with the popper's own mass", a.alpha_t_own, 1.0, "");
+    row("  the same with m = mg / g", a.alpha_t_net, 1.0, "");
     row("H_s / (E h^4 / (mg R))", a.H_s_scaled, 1.0, "");
   }
   for (const auto& w : a.warnings) fmt::print(out, "  warning: {}\n", w);

@@ -233,6 +233,10 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
     fmt::print(out, "  {:<8} {:>8.3f}  with m = the popper's own mass (the limit of a soft wire)\n",
                "", *analysis.alpha_t_own);
   }
+  if (analysis.alpha_t_net) {
+    fmt::print(out, "  {:<8} {:>8.3f}  with m = mg / g (no counterweight's inertia)\n", "",
+               *analysis.alpha_t_net);
+  }
   for (const auto& w : analysis.warnings) fmt::print(out, "  note        {}\n", w);
   return analysis;
 }

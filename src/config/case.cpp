@@ -51,7 +51,7 @@ constexpr KeySpec kKeys[] = {
     {"protocol", "delta_p_j_over_pc", "delta-p-j-over-pc", Dimension::Dimensionless, false, 0.5,
      "0.5", "0.5", "delta_p_j as a fraction of Zoelly's p_c (when delta_p_j is not given)"},
     {"numerics", "grid_spacing", "grid-spacing", Dimension::Length, false, std::nullopt, "",
-     "0.25 mm", "MPM grid spacing (from the resolution preset, a fraction of h, when absent)"},
+     "0.25 mm", "MPM grid spacing (from the resolution preset when absent: h/4, h/4, h/8)"},
     {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "", "1 mm",
      "target mesh element size (from the resolution preset when absent)"},
     {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "", "0.5 s",

@@ -413,6 +413,8 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
       if (a.t_star && m > 0.0) a.alpha_t = *a.t_star / theory::t_c(m, E, h, R);
       if (a.t_star && c->popper.mass > 0.0)
         a.alpha_t_own = *a.t_star / theory::t_c(c->popper.mass, E, h, R);
+      if (a.t_star && mg > 0.0)
+        a.alpha_t_net = *a.t_star / theory::t_c(mg / config::kStandardGravity, E, h, R);
       if (a.H_s && mg > 0.0) a.H_s_scaled = *a.H_s / (E * h * h * h * h / (mg * R));
     }
     if (a.F_star && mg > 0.0) {
@@ -462,6 +464,7 @@ nlohmann::json to_json(const Analysis& a) {
       {"alpha_F", a.alpha_F, "1", "F* / (E h^3 / R)"},
       {"alpha_t", a.alpha_t, "1", "t* / sqrt(m R / (E h^2)), m = popper + counterweight"},
       {"alpha_t_own", a.alpha_t_own, "1", "t* / sqrt(m_p R / (E h^2)), m_p = the popper alone"},
+      {"alpha_t_net", a.alpha_t_net, "1", "t* / sqrt((mg / g) R / (E h^2)), the net weight's mass"},
       {"H_s_scaled", a.H_s_scaled, "1", "H_s / (E h^4 / (m g R))"},
       {"F_star_over_mg", a.F_star_over_mg, "1", "F* / (m g)"},
   };

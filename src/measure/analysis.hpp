@@ -75,6 +75,8 @@ struct Analysis {
   // The same with the popper's own mass: the limit of a wire too soft to move the counterweight
   // within t*.
   std::optional<double> alpha_t_own;
+  // And with m = mg / g, the mass of the net weight (no counterweight's inertia at all).
+  std::optional<double> alpha_t_net;
   std::optional<double> H_s_scaled;      // H_s / (E h^4 / (m g R)), m g = net weight
   std::optional<double> F_star_over_mg;  // F* / (m g)
   std::vector<std::string> warnings;     // anything a reader should know, in plain words

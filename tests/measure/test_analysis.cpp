@@ -467,6 +467,9 @@ TEST(Analysis, PrefactorsWithCase) {
   // the popper alone: sqrt(0.3 * 0.03 / 4.8) = 43.3013 ms
   ASSERT_TRUE(a.alpha_t_own);
   EXPECT_NEAR(*a.alpha_t_own, 5.87 / 43.3013, 1e-5);
+  // m = mg / g = 0.0489464 kg: sqrt(0.0489464 * 0.03 / 4.8) = 17.4904 ms
+  ASSERT_TRUE(a.alpha_t_net);
+  EXPECT_NEAR(*a.alpha_t_net, 5.87 / 17.4904, 1e-5);
   // E h^4 / (m g R) = 1.2e6 * 1.6e-11 / (0.48 * 0.03) = 1.3333 mm
   EXPECT_NEAR(*a.H_s_scaled, 45.95e-3 * kV0 / (1.92e-5 / 0.0144), 1e-9);
   EXPECT_NEAR(*a.F_star_over_mg, 2.0 / 0.48, 1e-12);
