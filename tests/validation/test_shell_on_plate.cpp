@@ -17,8 +17,9 @@
 namespace snapjump {
 namespace {
 
-// The default popper's shell at the default preset's mesh and grid (sqrt(hR)/2 elements, one
-// quadratic element through h, cells of 0.025 R), its rim lowered at 0.05 m/s onto the plate.
+// The default popper's shell at the default preset's mesh (sqrt(hR)/2 elements, one quadratic
+// element through h) with cells of 0.025 R (the preset's grid before issue 13), its rim lowered
+// at 0.05 m/s onto the plate.
 TEST(ShellOnPlate, ForceAgainstIndentationFollowsTheContactSolver) {
   using P = testing::ShellOverPlate;
   const double R = P::R, h = P::h, nu = P::nu, E = P::E, v0 = 0.05;
