@@ -86,17 +86,26 @@ struct RiseStart {
   std::size_t index;
   double level;
 };
-RiseStart rise_start(std::span<const double> F, std::size_t k) {
-  constexpr double kFraction = 0.1;
-  std::size_t low = k;
+constexpr double kTurnFraction = 0.1;
+
+// Walking back from sample k, the extreme F met (the lowest for sign = +1, the highest for
+// sign = -1) before F turns back by more than a tenth of the way from that extreme to F[k].
+std::size_t extreme_behind(std::span<const double> F, std::size_t k, double sign) {
+  std::size_t best = k;
   for (std::size_t i = k; i-- > 0;) {
-    if (F[i] < F[low]) {
-      low = i;
-    } else if (F[i] > F[low] + kFraction * (F[k] - F[low])) {
+    const double d = sign * (F[i] - F[best]);  // < 0: further along; > 0: turning back
+    if (d < 0.0) {
+      best = i;
+    } else if (d > kTurnFraction * sign * (F[k] - F[best])) {
       break;
     }
   }
-  const double level = F[low] + kFraction * (F[k] - F[low]);
+  return best;
+}
+
+RiseStart rise_start(std::span<const double> F, std::size_t k) {
+  const std::size_t low = extreme_behind(F, k, +1.0);
+  const double level = F[low] + kTurnFraction * (F[k] - F[low]);
   std::size_t i = k;
   while (i > low && F[i] > level) --i;
   return {i, level};
@@ -106,16 +115,7 @@ RiseStart rise_start(std::span<const double> F, std::size_t k) {
 // falls again by more than a tenth of (that peak - F[k]). k itself when F does not climb going
 // back (k is on a rise or a plateau).
 std::size_t peak_behind(std::span<const double> F, std::size_t k) {
-  constexpr double kFraction = 0.1;
-  std::size_t high = k;
-  for (std::size_t i = k; i-- > 0;) {
-    if (F[i] > F[high]) {
-      high = i;
-    } else if (F[i] < F[high] - kFraction * (F[high] - F[k])) {
-      break;
-    }
-  }
-  return high;
+  return extreme_behind(F, k, -1.0);
 }
 
 void check_options(const AnalysisOptions& o) {

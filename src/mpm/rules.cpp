@@ -51,6 +51,11 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
   std::sort(loaded_.begin(), loaded_.end());
 }
 
+bool plate_carries(const PlateRule& plate, double dx, double x, double y, double z) {
+  constexpr double kCarriedShare = 0.5;
+  return z < 1.5 * dx && plate_share(plate.loaded_nodes(), dx, x, y, z) >= kCarriedShare;
+}
+
 double plate_share(const std::vector<std::array<std::int64_t, 3>>& loaded, double dx, double x,
                    double y, double z) {
   const auto wx = bspline_weights(x / dx), wy = bspline_weights(y / dx),

@@ -86,4 +86,9 @@ class PlateRule final : public GridRule {
 double plate_share(const std::vector<std::array<std::int64_t, 3>>& loaded, double dx, double x,
                    double y, double z);
 
+// Whether the plate carried a particle at x in its last step: at least half of the particle's
+// stencil weight on the loaded nodes (a particle 1.5 cells or more above z = 0 has none on the
+// plate's layers). The contact patch as a camera sees it is made of these particles.
+bool plate_carries(const PlateRule& plate, double dx, double x, double y, double z);
+
 }  // namespace snapjump::mpm

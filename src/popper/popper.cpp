@@ -15,8 +15,6 @@ namespace snapjump::popper {
 namespace {
 
 constexpr double kG = config::kStandardGravity;
-// A particle touches the plate when at least this share of its stencil weight is on loaded nodes.
-constexpr double kTouchingShare = 0.5;
 
 }  // namespace
 
@@ -414,11 +412,9 @@ Sample Popper::sample() {
   // Contact, as the camera sees it: the outer particles that the plate carries, i.e. that have at
   // least half of their stencil weight on the nodes the plate pushed in the last step. r is the
   // outermost; the contact is a disk when the apex is among them.
-  const auto& loaded = plate_->loaded_nodes();
   const double dx = stepper_->dx();
   const auto touching = [&](int a) {
-    return p.x.z[a] < 1.5 * dx &&
-           mpm::plate_share(loaded, dx, p.x.x[a], p.x.y[a], p.x.z[a]) >= kTouchingShare;
+    return mpm::plate_carries(*plate_, dx, p.x.x[a], p.x.y[a], p.x.z[a]);
   };
   bool any = false;
   for (int a : mesh.outer) {

@@ -41,10 +41,10 @@ Standoff press(double dx) {
   out.force = s.mean_force_until(s.stepper->time() + 0.02, [&] {
     if (s.stepper->time() > t_avg) {
       apex += s.apex_height();
-      // The popper's r: the outermost outer particle with half its stencil on loaded nodes.
+      // The popper's r: the outermost outer particle that the plate carries.
       double r = 0.0;
       for (int a : s.shell->mesh().outer) {
-        if (mpm::plate_share(s.plate->loaded_nodes(), dx, x.x[a], x.y[a], x.z[a]) >= 0.5) {
+        if (mpm::plate_carries(*s.plate, dx, x.x[a], x.y[a], x.z[a])) {
           r = std::max(r, std::hypot(x.x[a], x.y[a]));
         }
       }
