@@ -296,12 +296,18 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   auto* run_cmd = app.add_subcommand(
       "run",
-      "Simulate the popper (MPM): buckle, set delta_p_j, ground, release; write the time series, "
-      "a summary and ParaView snapshots into a new folder.");
+      "Simulate the popper (3D MPM, or --model axisymmetric): buckle, set delta_p_j, ground, "
+      "release; write the time series, a summary and ParaView snapshots into a new folder.");
   CaseOptions run_case;
   run_case.add_to(*run_cmd);
   RunOptions run_opts;
-  std::string run_resolution;
+  std::string run_resolution, run_model;
+  run_cmd
+      ->add_option("--model", run_model,
+                   "discretisation of the shell: 3d (the paper's MPM, the default) or "
+                   "axisymmetric (finite elements on the meridian section: a reference for the 3D "
+                   "model, fast enough for sweeps); overrides numerics.model")
+      ->check(CLI::IsMember({"3d", "axisymmetric"}));
   run_cmd->add_option("--output", run_opts.output,
                       "folder for the results (must not exist or be empty; default "
                       "runs/<case>-<date-time>)");
@@ -349,12 +355,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       }
       // A new run's set-up, which --resume and --reanalyze take from the run's folder instead.
       const bool sets_up_a_run = !run_case.case_file.empty() || !run_case.values.empty() ||
-                                 !run_resolution.empty() || !run_opts.output.empty();
+                                 !run_resolution.empty() || !run_model.empty() ||
+                                 !run_opts.output.empty();
       if (!reanalyze.empty()) {
         if (sets_up_a_run || !run_opts.resume.empty() || run_opts.pause_at) {
           throw config::CaseError(
               "--reanalyze reads a finished run's folder as it is: give no case file, case "
-              "values, --resolution, --output, --resume or --pause-at with it");
+              "values, --resolution, --model, --output, --resume or --pause-at with it");
         }
         return reanalyze_run(reanalyze, out);
       }
@@ -362,12 +369,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         if (sets_up_a_run) {
           throw config::CaseError(
               "--resume continues a run as it was set up (its case.toml, its folder): give no "
-              "case file, case values, --resolution or --output with it");
+              "case file, case values, --resolution, --model or --output with it");
         }
         return run_simulation(config::Case{}, run_opts, out, err);
       }
       auto c = run_case.load();
       if (const auto r = config::parse_resolution(run_resolution)) c.numerics.resolution = *r;
+      if (const auto m = config::parse_model(run_model)) c.numerics.model = *m;
       return run_simulation(c, run_opts, out, err);
     }
   } catch (const config::CaseError& e) {

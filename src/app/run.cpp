@@ -134,16 +134,8 @@ LoopState load_checkpoint(const fs::path& dir, popper::Popper& pop) {
   return s;
 }
 
-void print_numerics(std::ostream& out, const popper::Popper& pop, const mpm::TimeStep& step) {
-  const auto& n = pop.numerics();
-  fmt::print(
-      out,
-      "  mesh        {} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} "
-      "layers)\n  grid        {:.3g} mm cells (h / {:.3g})\n  time step   {:.3g} us (elastic "
-      "bound {:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
-      pop.body().num_elements(), pop.body().num_nodes(), 1e3 * n.cap.element_size, n.cap.layers,
-      1e3 * n.dx, pop.input().shell.h / n.dx, 1e6 * step.dt, 1e6 * step.elastic, 1e6 * step.grid,
-      step.limiting);
+void print_numerics(std::ostream& out, const popper::Popper& pop) {
+  out << pop.model().describe();
   // What the model assumes where the paper is silent (docs/popper.md, "Assumptions").
   const auto& c = pop.input();
   fmt::print(out,
@@ -270,18 +262,9 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   const auto start = Clock::now();
   const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
   popper::Popper pop(c, numerics);
-  const auto& body = pop.body();
-  const auto& step = pop.time_step();
-  print_numerics(out, pop, step);
-  summary["numerics"] = {{"elements", body.num_elements()},
-                         {"particles", body.num_nodes()},
-                         {"element_size", numerics.cap.element_size},
-                         {"layers", numerics.cap.layers},
-                         {"dx", numerics.dx},
-                         {"dt", step.dt},
-                         {"dt_elastic", step.elastic},
-                         {"dt_grid", step.grid},
-                         {"end_time", numerics.end_time}};
+  print_numerics(out, pop);
+  summary["numerics"] = pop.model().numerics_json();
+  summary["numerics"]["end_time"] = numerics.end_time;
 
   double last_print = -1.0;
   const auto columns = popper::sample_columns();
@@ -291,7 +274,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   io::PvdCollection pvd(dir / "run.pvd");
   const auto snapshot = [&]() {
     const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd.size());
-    io::write_vtu(dir / name, body, pop.stepper().particles().x, pop.stepper().particles().v);
+    pop.model().write_snapshot(dir / name);
     pvd.add(pop.time(), name);
     loop.frames.emplace_back(pop.time(), name);
   };
@@ -332,7 +315,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       pvd.add(t, name);
       loop.frames.emplace_back(t, name);
     }
-    fmt::print(out, "  resumed     at t = {:.4f} s, step {}\n", pop.time(), pop.stepper().steps());
+    fmt::print(out, "  resumed     at t = {:.4f} s, step {}\n", pop.time(), pop.steps());
   } else {
     const auto progress = [&](const std::string& phase, double t, double fraction) {
       if (options.quiet || wall() - last_print < 2.0) return;
@@ -368,7 +351,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
 
   std::string status = "completed";
   const double run_start = wall();
-  const long start_steps = pop.stepper().steps();
+  const long start_steps = pop.steps();
   bool paused = false;
   try {
     while (pop.time() < numerics.end_time) {
@@ -404,8 +387,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       }
       if (!options.quiet && wall() - last_print >= 5.0) {
         last_print = wall();
-        const double rate =
-            (pop.stepper().steps() - start_steps) / std::max(1e-9, wall() - run_start);
+        const double rate = (pop.steps() - start_steps) / std::max(1e-9, wall() - run_start);
         const double eta = (numerics.end_time - pop.time()) / pop.dt() / std::max(rate, 1e-9);
         fmt::print(err,
                    "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
@@ -428,7 +410,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
 
   summary["status"] = status;
   summary["wall_time"] = wall();
-  summary["steps"] = pop.stepper().steps();
+  summary["steps"] = pop.steps();
   const auto analysis = write_results(dir, summary, c, series, status, out);
   fmt::print(out, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
              dir.string(), pvd.size());

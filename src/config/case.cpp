@@ -61,6 +61,7 @@ constexpr KeySpec kKeys[] = {
 // Keys that are not scalar quantities.
 constexpr std::string_view kResolutionKey = "resolution";
 constexpr std::string_view kLayersKey = "elements_through_thickness";
+constexpr std::string_view kModelKey = "model";
 constexpr std::string_view kTitleKey = "title";
 
 constexpr std::string_view kDefaultCase =
@@ -112,7 +113,8 @@ std::string keys_of(std::string_view table) {
     if (!out.empty()) out += ", ";
     out += k.name;
   }
-  if (table == "numerics") out += fmt::format(", {}, {}", kResolutionKey, kLayersKey);
+  if (table == "numerics")
+    out += fmt::format(", {}, {}, {}", kModelKey, kResolutionKey, kLayersKey);
   return out;
 }
 
@@ -199,6 +201,13 @@ class Reader {
         if (!r)
           fail(key.source(), "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
         c.numerics.resolution = *r;
+        continue;
+      }
+      if (table_name == "numerics" && name == kModelKey) {
+        const auto* s = node.as_string();
+        const auto m = parse_model(s ? std::string_view(s->get()) : std::string_view());
+        if (!m) fail(key.source(), "numerics.model must be \"3d\" or \"axisymmetric\"");
+        c.numerics.model = *m;
         continue;
       }
       if (table_name == "numerics" && name == kLayersKey) {
@@ -356,6 +365,15 @@ std::string_view to_string(Resolution r) {
   return "default";
 }
 
+std::optional<Model> parse_model(std::string_view text) {
+  for (const auto m : {Model::ThreeD, Model::Axisymmetric}) {
+    if (text == to_string(m)) return m;
+  }
+  return std::nullopt;
+}
+
+std::string_view to_string(Model m) { return m == Model::Axisymmetric ? "axisymmetric" : "3d"; }
+
 std::span<const KeySpec> quantity_keys() { return kKeys; }
 
 std::string_view default_case_text() { return kDefaultCase; }
@@ -380,6 +398,9 @@ std::string to_toml(const Case& c) {
     protocol.insert("delta_p_j_over_pc", c.protocol.delta_p_j_over_pc);
   }
   toml::table numerics{{"resolution", std::string(to_string(c.numerics.resolution))}};
+  if (c.numerics.model != Model::ThreeD) {
+    numerics.insert("model", std::string(to_string(c.numerics.model)));
+  }
   if (c.numerics.element_size) numerics.insert("element_size", *c.numerics.element_size);
   if (c.numerics.grid_spacing) numerics.insert("grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.elements_through_thickness) {

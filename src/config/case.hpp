@@ -69,7 +69,14 @@ std::string_view to_string(Resolution r);
 // "coarse", "default", "fine"; nullopt for anything else.
 std::optional<Resolution> parse_resolution(std::string_view text);
 
+// The discretisation of the shell: the paper's 3D MPM, or the axisymmetric finite elements.
+enum class Model { ThreeD, Axisymmetric };
+std::string_view to_string(Model m);
+// "3d", "axisymmetric"; nullopt for anything else.
+std::optional<Model> parse_model(std::string_view text);
+
 struct Numerics {
+  Model model = Model::ThreeD;
   Resolution resolution = Resolution::Default;
   std::optional<double> element_size;  // [m]; from the resolution preset when absent
   std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)

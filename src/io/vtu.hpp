@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "axi/body.hpp"
 #include "fem/body.hpp"
 
 namespace snapjump::io {
@@ -14,6 +15,10 @@ namespace snapjump::io {
 // strain energy density (averaged over the element). Throws std::runtime_error on I/O failure.
 void write_vtu(const std::filesystem::path& path, const fem::Body& body, const mesh::Points& x,
                const mesh::Points& v);
+// The axisymmetric body's meridian section as 9-node quadrilaterals in the plane y = 0 (x the
+// radius), with point data displacement and velocity.
+void write_vtu(const std::filesystem::path& path, const axi::Body& body, const axi::Points& x,
+               const axi::Points& v);
 
 // A .pvd collection, rewritten after each frame so that a run stopped early still has a valid
 // one.

@@ -8,23 +8,13 @@
 #include <string_view>
 #include <vector>
 
+#include "fem/rigid_body.hpp"
 #include "mpm/grid.hpp"
 
 namespace snapjump::mpm {
 
-// One vertical degree of freedom: the container that the rim is glued to.
-struct RigidBody {
-  double mass = 0.0;           // [kg]
-  double z = 0.0;              // height of its reference point [m]
-  double vz = 0.0;             // [m/s]
-  double applied_force = 0.0;  // forces other than the clamp (weight share, gas) [N]
-  double clamp_force = 0.0;    // force of the shell on the body in the last step [N]
-  // Advances the body over dt with the applied force and the last clamp reaction.
-  void advance(double dt) {
-    vz += dt * (applied_force + clamp_force) / mass;
-    z += dt * vz;
-  }
-};
+// The container that the rim is glued to (one vertical degree of freedom).
+using RigidBody = fem::RigidBody;
 
 struct StepContext {
   double dt = 0.0;

@@ -10,20 +10,22 @@
 #include <string>
 
 #include "config/case.hpp"
-#include "fem/body.hpp"
+#include "fem/rigid_body.hpp"
 #include "measure/time_series.hpp"
 #include "mesh/cap_mesher.hpp"
-#include "mpm/body_forces.hpp"
-#include "mpm/stepper.hpp"
 #include "popper/gas.hpp"
+#include "popper/shell_model.hpp"
 
 namespace snapjump::popper {
 
 // Numerical settings resolved from the case's [numerics] table.
 struct Numerics {
-  mesh::CapSpec cap;  // mesh of the shell
-  double dx = 0.0;    // grid spacing [m]
-  double cfl = 0.4;   // elastic time step factor (build/cfl_scan coarse: 0.6 stable, 0.7 not)
+  config::Model model = config::Model::ThreeD;
+  mesh::CapSpec cap;    // mesh of the shell (3D)
+  double dx = 0.0;      // grid spacing [m] (3D)
+  int axi_through = 0;  // axisymmetric: elements through h
+  int axi_along = 0;    // axisymmetric: elements along the meridian
+  double cfl = 0.4;     // elastic time step factor (build/cfl_scan coarse: 0.6 stable, 0.7 not)
   double probe_interval = 1e-4;       // [s] between samples of the time series
   double snapshot_interval = 5e-3;    // [s] between VTU snapshots
   double checkpoint_interval = 0.02;  // [s] between checkpoints of a run
@@ -37,6 +39,13 @@ inline constexpr double kCellsPerThicknessCoarse = 4.0;
 inline constexpr double kCellsPerThicknessDefault = 4.0;
 inline constexpr double kCellsPerThicknessFine = 8.0;
 double grid_cells_per_thickness(config::Resolution r);
+// The axisymmetric model's elements through h per preset (numerics.elements_through_thickness
+// overrides it); along the meridian the elements are twice as long as thick, or
+// numerics.element_size long.
+inline constexpr int kAxiThroughCoarse = 2;
+inline constexpr int kAxiThroughDefault = 4;
+inline constexpr int kAxiThroughFine = 8;
+int axi_elements_through(config::Resolution r);
 
 // What the simulator needs beyond a valid case (nu < 1/2). Throws config::CaseError.
 void check_simulable(const config::Case& c);
@@ -79,26 +88,24 @@ class Popper {
   // Current sample (F is the mean plate force since the previous sample).
   Sample sample();
 
-  // The state after release() (particles, container, gas, clock), to continue a stopped run:
+  // The state after release() (the shell's, container, gas, clock), to continue a stopped run:
   // a popper built from the same case and numerics and given load_state() steps on exactly as
   // the saved one would have. Binary, for the same build on the same machine.
   void save_state(std::ostream& out) const;
   void load_state(std::istream& in);
 
-  [[nodiscard]] double time() const { return stepper_->time(); }
-  [[nodiscard]] double dt() const { return stepper_->dt(); }
-  [[nodiscard]] const fem::Body& body() const { return *body_; }
-  [[nodiscard]] const mpm::Stepper& stepper() const { return *stepper_; }
-  [[nodiscard]] const mpm::RigidBody& container() const { return container_; }
-  [[nodiscard]] const mpm::RigidBody& counterweight() const { return counterweight_; }
+  [[nodiscard]] double time() const { return model_->time(); }
+  [[nodiscard]] double dt() const { return model_->dt(); }
+  [[nodiscard]] long steps() const { return model_->steps(); }
+  // The discretisation of the shell.
+  [[nodiscard]] const ShellModel& model() const { return *model_; }
+  [[nodiscard]] const fem::RigidBody& container() const { return container_; }
+  [[nodiscard]] const fem::RigidBody& counterweight() const { return counterweight_; }
   [[nodiscard]] const Gas& gas() const { return gas_; }
   [[nodiscard]] const config::Case& input() const { return case_; }
   [[nodiscard]] const Numerics& numerics() const { return numerics_; }
   [[nodiscard]] double delta_p_j() const { return delta_p_j_; }
-  [[nodiscard]] double elastic_time_step() const { return time_step_.elastic; }
-  // The time step of the MPM phases: the elastic bound, or the grid's at 2 m/s if smaller.
-  [[nodiscard]] const mpm::TimeStep& time_step() const { return time_step_; }
-  [[nodiscard]] double hole_area() const { return hole_area_; }
+  [[nodiscard]] double hole_area() const { return model_->hole_area(); }
 
  private:
   void update_container_force(double damping);
@@ -107,30 +114,22 @@ class Popper {
   void set_apparatus_inertia();
   // Tension of an elastic wire beyond the counterweight's weight, on the container [N].
   [[nodiscard]] double wire_tension() const;
-  // Mean height of the outer rim circle (the rim plane of the outer surface) at positions x.
-  [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
-  void build_stepper(mpm::Particles particles, double damping);
   void advance_gas();
 
   config::Case case_;
   Numerics numerics_;
-  std::unique_ptr<fem::Body> body_;
+  // Built before the gas, whose reference volume holds the undeformed cavity.
+  std::unique_ptr<ShellModel> model_;
   Gas gas_;
-  std::unique_ptr<mpm::BodyForces> forces_;
-  std::unique_ptr<mpm::Stepper> stepper_;
-  mpm::RigidBody container_;
+  fem::RigidBody container_;
   // With an elastic wire: the counterweight, its z being how far the popper would have risen
   // with a rigid wire (its own fall); unused with a rigid wire.
-  mpm::RigidBody counterweight_;
-  mpm::PlateRule* plate_ = nullptr;
+  fem::RigidBody counterweight_;
   double delta_p_j_ = 0.0;
-  mpm::TimeStep time_step_;
-  double hole_area_ = 0.0;  // area of the container's hole: the inner rim circle [m^2]
+  bool grounded_ = false;  // on the plate, ready for release()
   double shell_mass_ = 0.0;
-  double z_release_ = 0.0;      // container z at t = 0
-  double depth_outer_ = 0.0;    // apex to outer rim plane, undeformed [m]
-  std::vector<int> outer_rim_;  // clamped nodes of the outer surface
-  double impulse_ = 0.0;        // plate impulse since the last sample
+  double z_release_ = 0.0;  // container z at t = 0
+  double impulse_ = 0.0;    // plate impulse since the last sample
   double impulse_time_ = 0.0;
 };
 

@@ -1,0 +1,321 @@
+#include "axi/body.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace snapjump::axi {
+namespace {
+
+constexpr double kTwoPi = 2.0 * std::numbers::pi;
+
+// 1D quadratic Lagrange functions on [-1, 1] at nodes -1, 0, 1, and their derivatives.
+std::array<double, 3> lagrange(double s) {
+  return {0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)};
+}
+std::array<double, 3> lagrange_d(double s) { return {s - 0.5, -2.0 * s, s + 0.5}; }
+
+struct Gauss {
+  std::vector<double> x, w;
+};
+Gauss gauss(int n) {
+  if (n == 2) {
+    const double a = 1.0 / std::sqrt(3.0);
+    return {{-a, a}, {1.0, 1.0}};
+  }
+  const double a = std::sqrt(0.6);
+  return {{-a, 0.0, a}, {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0}};
+}
+
+}  // namespace
+
+int elements_along(double R, double h, double phi, int through) {
+  return std::max(2, static_cast<int>(std::ceil(R * phi / (2.0 * h / through))));
+}
+
+Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), material_(material) {
+  if (!(spec.R > 0.0 && spec.h > 0.0 && spec.h < spec.R && spec.phi > 0.0 &&
+        spec.phi < std::numbers::pi && spec.through >= 1 && spec.along >= 1)) {
+    throw std::invalid_argument(
+        fmt::format("unusable axisymmetric mesh: R = {} m, h = {} m, phi = {} rad, {} x {} "
+                    "elements",
+                    spec.R, spec.h, spec.phi, spec.along, spec.through));
+  }
+  // Node lattice (i, j): i = 0..2 along along the meridian (polar angle), j = 0..2 through
+  // through the thickness (inner to outer).
+  const int ni = 2 * spec.along + 1, nj = 2 * spec.through + 1;
+  const auto id = [nj](int i, int j) { return i * nj + j; };
+  for (int i = 0; i < ni; ++i) {
+    const double theta = spec.phi * i / (ni - 1);
+    for (int j = 0; j < nj; ++j) {
+      const double s = spec.R - 0.5 * spec.h + spec.h * j / (nj - 1);
+      nodes_.r.push_back(i == 0 ? 0.0 : s * std::sin(theta));
+      nodes_.z.push_back(-s * std::cos(theta));
+    }
+  }
+  for (int j = 0; j < nj; ++j) {
+    axis_.push_back(id(0, j));
+    rim_.push_back(id(ni - 1, j));
+  }
+  for (int i = 0; i < ni; ++i) {
+    outer_.push_back(id(i, nj - 1));
+    inner_.push_back(id(i, 0));
+  }
+  // Element node order: local (a, b) with a along the meridian, b through h, node a * 3 + b.
+  for (int e = 0; e < spec.along; ++e) {
+    for (int k = 0; k < spec.through; ++k) {
+      std::array<int, 9> el{};
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) el[3 * a + b] = id(2 * e + a, 2 * k + b);
+      }
+      elements_.push_back(el);
+    }
+  }
+
+  // Quadrature data, and the consistent mass's diagonal for the lumping.
+  mass_.assign(nodes_.size(), 0.0);
+  const auto build = [&](Rule& rule, int n, bool masses) {
+    const auto g = gauss(n);
+    rule.points = n * n;
+    for (std::size_t e = 0; e < elements_.size(); ++e) {
+      const auto& el = elements_[e];
+      std::array<double, 9> diag{};
+      double element_mass = 0.0;
+      for (int p = 0; p < n; ++p) {
+        for (int q = 0; q < n; ++q) {
+          const auto La = lagrange(g.x[p]), Lb = lagrange(g.x[q]);
+          const auto dLa = lagrange_d(g.x[p]), dLb = lagrange_d(g.x[q]);
+          std::array<double, 9> N{}, Ns{}, Nt{};
+          for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+              N[3 * a + b] = La[a] * Lb[b];
+              Ns[3 * a + b] = dLa[a] * Lb[b];
+              Nt[3 * a + b] = La[a] * dLb[b];
+            }
+          }
+          double J11 = 0, J12 = 0, J21 = 0, J22 = 0, rho0 = 0;  // d(R, Z) / d(s, t)
+          for (int m = 0; m < 9; ++m) {
+            const double R = nodes_.r[el[m]], Z = nodes_.z[el[m]];
+            J11 += R * Ns[m];
+            J12 += R * Nt[m];
+            J21 += Z * Ns[m];
+            J22 += Z * Nt[m];
+            rho0 += R * N[m];
+          }
+          const double det = J11 * J22 - J12 * J21;
+          if (!(std::abs(det) > 0.0) || !(rho0 > 0.0)) {
+            throw std::invalid_argument(
+                fmt::format("axisymmetric element {} is degenerate at a quadrature point", e));
+          }
+          const double w = g.w[p] * g.w[q] * std::abs(det) * kTwoPi * rho0;
+          for (int m = 0; m < 9; ++m) {
+            // dN/dR, dN/dZ from the inverse Jacobian.
+            rule.N.push_back(N[m]);
+            rule.dR.push_back((J22 * Ns[m] - J21 * Nt[m]) / det);
+            rule.dZ.push_back((-J12 * Ns[m] + J11 * Nt[m]) / det);
+          }
+          rule.rho0.push_back(rho0);
+          rule.weight.push_back(w);
+          if (masses) {
+            element_mass += material_.rho * w;
+            for (int m = 0; m < 9; ++m) diag[m] += material_.rho * w * N[m] * N[m];
+          }
+        }
+      }
+      if (masses) {
+        double sum = 0.0;
+        for (double d : diag) sum += d;
+        for (int m = 0; m < 9; ++m) mass_[el[m]] += element_mass * diag[m] / sum;
+        volume_ += element_mass / material_.rho;
+      }
+    }
+  };
+  build(full_, 3, true);
+  build(reduced_, 2, false);
+  for (double m : mass_) total_mass_ += m;
+}
+
+template <bool kEnergy>
+double Body::element_loop(const Points& x, Points* f) const {
+  const double mu = material_.mu, lambda = material_.lambda;
+  double energy = 0.0;
+  if (f) {
+    f->r.assign(nodes_.size(), 0.0);
+    f->z.assign(nodes_.size(), 0.0);
+  }
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const auto& el = elements_[e];
+    double xr[9], xz[9];
+    for (int m = 0; m < 9; ++m) {
+      xr[m] = x.r[el[m]];
+      xz[m] = x.z[el[m]];
+    }
+    double fr[9] = {}, fz[9] = {};
+    // Pass 0: shear part at the full rule; pass 1: bulk part at the reduced rule.
+    for (int pass = 0; pass < 2; ++pass) {
+      const Rule& rule = pass == 0 ? full_ : reduced_;
+      const std::size_t base = e * rule.points;
+      for (int p = 0; p < rule.points; ++p) {
+        const std::size_t qp = base + p;
+        const double* N = &rule.N[9 * qp];
+        const double* dR = &rule.dR[9 * qp];
+        const double* dZ = &rule.dZ[9 * qp];
+        double F11 = 0, F12 = 0, F21 = 0, F22 = 0, rho = 0;
+        for (int m = 0; m < 9; ++m) {
+          F11 += xr[m] * dR[m];
+          F12 += xr[m] * dZ[m];
+          F21 += xz[m] * dR[m];
+          F22 += xz[m] * dZ[m];
+          rho += xr[m] * N[m];
+        }
+        const double rho0 = rule.rho0[qp];
+        const double F33 = rho / rho0;
+        const double d2 = F11 * F22 - F12 * F21;
+        const double J = d2 * F33;
+        if (!(J > 0.0) || !std::isfinite(J)) {
+          throw fem::InvertedElement(static_cast<int>(e), xr[0], 0.0, xz[0]);
+        }
+        const double lnJ = std::log(J);
+        // F^-T of the 2 x 2 block, and of the hoop stretch.
+        const double iT11 = F22 / d2, iT12 = -F21 / d2, iT21 = -F12 / d2, iT22 = F11 / d2;
+        const double iT33 = 1.0 / F33;
+        double P11, P12, P21, P22, P33;
+        if (pass == 0) {
+          P11 = mu * (F11 - iT11);
+          P12 = mu * (F12 - iT12);
+          P21 = mu * (F21 - iT21);
+          P22 = mu * (F22 - iT22);
+          P33 = mu * (F33 - iT33);
+          if constexpr (kEnergy) {
+            energy +=
+                rule.weight[qp] *
+                (0.5 * mu * (F11 * F11 + F12 * F12 + F21 * F21 + F22 * F22 + F33 * F33 - 3.0) -
+                 mu * lnJ);
+          }
+        } else {
+          const double s = lambda * lnJ;
+          P11 = s * iT11;
+          P12 = s * iT12;
+          P21 = s * iT21;
+          P22 = s * iT22;
+          P33 = s * iT33;
+          if constexpr (kEnergy) energy += rule.weight[qp] * 0.5 * lambda * lnJ * lnJ;
+        }
+        if (f) {
+          const double w = rule.weight[qp];
+          const double h33 = P33 / rho0;
+          for (int m = 0; m < 9; ++m) {
+            fr[m] -= w * (P11 * dR[m] + P12 * dZ[m] + h33 * N[m]);
+            fz[m] -= w * (P21 * dR[m] + P22 * dZ[m]);
+          }
+        }
+      }
+    }
+    if (f) {
+      for (int m = 0; m < 9; ++m) {
+        f->r[el[m]] += fr[m];
+        f->z[el[m]] += fz[m];
+      }
+    }
+  }
+  return energy;
+}
+
+void Body::internal_forces(const Points& x, Points& f) const { element_loop<false>(x, &f); }
+
+double Body::strain_energy(const Points& x) const { return element_loop<true>(x, nullptr); }
+
+double Body::cavity_volume(const Points& x) const {
+  const auto g = gauss(3);
+  double V = 0.0;
+  for (std::size_t k = 0; k + 2 < inner_.size(); k += 2) {
+    for (int p = 0; p < 3; ++p) {
+      const auto L = lagrange(g.x[p]);
+      const auto dL = lagrange_d(g.x[p]);
+      double rho = 0, dz = 0;
+      for (int m = 0; m < 3; ++m) {
+        rho += L[m] * x.r[inner_[k + m]];
+        dz += dL[m] * x.z[inner_[k + m]];
+      }
+      V += g.w[p] * std::numbers::pi * rho * rho * dz;
+    }
+  }
+  return V;
+}
+
+void Body::add_pressure_forces(const Points& x, double dp, Points& f) const {
+  if (dp == 0.0) return;
+  // f_a = -dp * integral of N_a n dA, n = (dz, -drho) / ds out of the cavity (into the material),
+  // dA = 2 pi rho ds: exact with three Gauss points on the quadratic curve.
+  const auto g = gauss(3);
+  for (std::size_t k = 0; k + 2 < inner_.size(); k += 2) {
+    for (int p = 0; p < 3; ++p) {
+      const auto L = lagrange(g.x[p]);
+      const auto dL = lagrange_d(g.x[p]);
+      double rho = 0, dr = 0, dz = 0;
+      for (int m = 0; m < 3; ++m) {
+        rho += L[m] * x.r[inner_[k + m]];
+        dr += dL[m] * x.r[inner_[k + m]];
+        dz += dL[m] * x.z[inner_[k + m]];
+      }
+      const double c = dp * g.w[p] * 2.0 * std::numbers::pi * rho;
+      for (int m = 0; m < 3; ++m) {
+        const int a = inner_[k + m];
+        f.r[a] -= c * L[m] * dz;
+        f.z[a] += c * L[m] * dr;
+      }
+    }
+  }
+}
+
+double Body::highest_frequency() const {
+  const std::size_t n = nodes_.size();
+  std::vector<char> fixed_r(n, 0);
+  for (int a : axis_) fixed_r[a] = 1;
+  Points v{std::vector<double>(n), std::vector<double>(n)};
+  // A start vector with every mode in it.
+  for (std::size_t a = 0; a < n; ++a) {
+    v.r[a] = fixed_r[a] ? 0.0 : std::sin(1.0 + 3.7 * static_cast<double>(a));
+    v.z[a] = std::cos(2.0 + 5.3 * static_cast<double>(a));
+  }
+  Points f0, f1, x = nodes_;
+  internal_forces(nodes_, f0);
+  double lambda = 0.0;
+  for (int it = 0; it < 200; ++it) {
+    double norm = 0.0;
+    for (std::size_t a = 0; a < n; ++a) norm += v.r[a] * v.r[a] + v.z[a] * v.z[a];
+    norm = std::sqrt(norm);
+    for (std::size_t a = 0; a < n; ++a) {
+      v.r[a] /= norm;
+      v.z[a] /= norm;
+    }
+    // A perturbation of 1e-7 h per node on average.
+    const double eps = 1e-7 * spec_.h * std::sqrt(static_cast<double>(n));
+    for (std::size_t a = 0; a < n; ++a) {
+      x.r[a] = nodes_.r[a] + eps * v.r[a];
+      x.z[a] = nodes_.z[a] + eps * v.z[a];
+    }
+    internal_forces(x, f1);
+    // w = M^-1 K v = -M^-1 (f(x + eps v) - f(x)) / eps.
+    double rayleigh = 0.0, vv = 0.0;
+    for (std::size_t a = 0; a < n; ++a) {
+      const double wr = fixed_r[a] ? 0.0 : -(f1.r[a] - f0.r[a]) / (eps * mass_[a]);
+      const double wz = -(f1.z[a] - f0.z[a]) / (eps * mass_[a]);
+      rayleigh += wr * v.r[a] + wz * v.z[a];
+      vv += v.r[a] * v.r[a] + v.z[a] * v.z[a];
+      v.r[a] = wr;
+      v.z[a] = wz;
+    }
+    const double next = rayleigh / vv;
+    if (it > 20 && std::abs(next - lambda) < 1e-4 * std::abs(next)) {
+      lambda = next;
+      break;
+    }
+    lambda = next;
+  }
+  return std::sqrt(std::max(lambda, 0.0));
+}
+
+}  // namespace snapjump::axi

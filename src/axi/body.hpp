@@ -1,0 +1,104 @@
+// The cap as an axisymmetric solid: its meridian section (polar angle 0..phi, radius R - h/2 ..
+// R + h/2 about the centre of curvature at the origin, apex on the negative z axis) meshed with
+// structured 9-node quadrilaterals, several through h. Large deformation, Total Lagrangian, the
+// same compressible neo-Hookean energy as the 3D body, with the hoop stretch rho / rho_0 as the
+// third principal stretch.
+//
+// Volumetric locking at nu near 1/2: the energy is split into the shear part
+// mu/2 (tr(F^T F) - 3) - mu ln J, integrated with 3 x 3 Gauss points, and the bulk part
+// lambda/2 (ln J)^2, integrated with 2 x 2 (selective reduced integration; with a 9-node element
+// this acts as four discontinuous pressures per element). Both parts are the 3D body's energy; only
+// the quadrature of the bulk part differs.
+//
+// Node data are (rho, z) pairs in the meridian plane; masses, forces and energies are those of
+// the whole ring (the factor 2 pi rho_0 is in the quadrature weights).
+#pragma once
+
+#include <array>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "fem/body.hpp"
+
+namespace snapjump::axi {
+
+struct MeshSpec {
+  double R = 0.0;    // mid-surface radius [m]
+  double h = 0.0;    // thickness [m]
+  double phi = 0.0;  // polar angle of the rim [rad]
+  int through = 4;   // elements through h
+  int along = 0;     // elements along the meridian
+};
+
+// Meridian positions (structure of arrays).
+struct Points {
+  std::vector<double> r, z;
+  [[nodiscard]] std::size_t size() const { return r.size(); }
+};
+
+class Body {
+ public:
+  Body(const MeshSpec& spec, const fem::Material& material);
+
+  [[nodiscard]] const MeshSpec& spec() const { return spec_; }
+  [[nodiscard]] const fem::Material& material() const { return material_; }
+  [[nodiscard]] std::size_t num_nodes() const { return nodes_.size(); }
+  [[nodiscard]] std::size_t num_elements() const { return elements_.size(); }
+  [[nodiscard]] const Points& nodes() const { return nodes_; }
+  [[nodiscard]] const std::vector<std::array<int, 9>>& elements() const { return elements_; }
+  // Lumped masses of the rings (diagonal scaling of the consistent mass) [kg].
+  [[nodiscard]] const std::vector<double>& mass() const { return mass_; }
+  [[nodiscard]] double total_mass() const { return total_mass_; }
+  // The solid of revolution's volume as the quadrature sees it [m^3].
+  [[nodiscard]] double reference_volume() const { return volume_; }
+
+  // Node sets: on the axis (rho = 0), on the rim face (glued to the container), on the outer
+  // surface (meets the plate) from the axis to the rim, on the inner surface (the cavity's wall)
+  // from the axis to the rim; the outer node on the axis.
+  [[nodiscard]] const std::vector<int>& axis() const { return axis_; }
+  [[nodiscard]] const std::vector<int>& rim() const { return rim_; }
+  [[nodiscard]] const std::vector<int>& outer() const { return outer_; }
+  [[nodiscard]] const std::vector<int>& inner() const { return inner_; }
+  [[nodiscard]] int apex() const { return outer_.front(); }
+
+  // f = -dW/dx at positions x (overwrites f). Throws fem::InvertedElement.
+  void internal_forces(const Points& x, Points& f) const;
+  [[nodiscard]] double strain_energy(const Points& x) const;
+  // Volume between the current inner surface and the plane of its rim (exact for the quadratic
+  // curve): the integral of pi rho^2 dz along the inner surface from the axis to the rim.
+  [[nodiscard]] double cavity_volume(const Points& x) const;
+  // f += the follower load of a pressure difference dp (outside minus inside) on the current
+  // inner surface, -dp * integral of N_a n dA with n out of the cavity. Its resultant along z is
+  // dp times the area of the inner rim circle: the container's hole takes the opposite.
+  void add_pressure_forces(const Points& x, double dp, Points& f) const;
+  // The highest frequency of the undeformed body with free nodes but the axis's radial motion,
+  // by power iteration on M^-1 K (K from differences of the internal forces) [rad/s].
+  [[nodiscard]] double highest_frequency() const;
+
+ private:
+  template <bool kEnergy>
+  double element_loop(const Points& x, Points* f) const;
+
+  MeshSpec spec_;
+  fem::Material material_;
+  Points nodes_;
+  std::vector<std::array<int, 9>> elements_;
+  // Per element and quadrature point: N (9), dN/dR and dN/dZ (9 each), rho_0, weight
+  // (Gauss weight x det x 2 pi rho_0). The full rule (3 x 3) and the reduced rule (2 x 2).
+  struct Rule {
+    int points = 0;
+    std::vector<double> N, dR, dZ, rho0, weight;
+  };
+  Rule full_, reduced_;
+  std::vector<double> mass_;
+  double total_mass_ = 0.0;
+  double volume_ = 0.0;
+  std::vector<int> axis_, rim_, outer_, inner_;
+};
+
+// Elements along the meridian for a number through h: the elements' meridian length twice their
+// thickness.
+int elements_along(double R, double h, double phi, int through);
+
+}  // namespace snapjump::axi

@@ -1,0 +1,77 @@
+// Explicit dynamics of the axisymmetric body: central differences (kick, then drift) on lumped
+// masses, with the rim either held in place or glued to the rigid container, and the plate z = 0
+// acting exactly on the outer surface's nodes (no grid, no standoff).
+//
+// The plate: a node whose step would take it below z = 0 lands on it; the normal impulse that
+// stops it is the plate's reaction, and Coulomb friction takes up to mu times that impulse from
+// the node's radial momentum, never reversing it. The plate force is the sum of the normal
+// impulses over the step.
+#pragma once
+
+#include <functional>
+#include <iosfwd>
+#include <vector>
+
+#include "axi/body.hpp"
+#include "fem/rigid_body.hpp"
+
+namespace snapjump::axi {
+
+class Dynamics {
+ public:
+  Dynamics(const Body& body, double dt);
+
+  // Pressure difference (outside minus inside) on the inner surface, asked once per step.
+  void set_pressure(std::function<double()> delta_p) { pressure_ = std::move(delta_p); }
+  void set_gravity(double g) { gravity_ = g; }
+  // Mass-proportional damping c [1/s]: m a = f - c m v.
+  void set_damping(double c) { damping_ = c; }
+  // The rim stays where it is (the container held in the air); no plate.
+  void hold_rim();
+  // From now on the rim moves with the container along z, at its reference height plus
+  // rim_offset plus the container's z, and the plate acts with friction mu.
+  void attach(fem::RigidBody& container, double mu, double rim_offset);
+  // Moves every node by dz.
+  void translate_z(double dz);
+  void zero_velocities();
+
+  // One step. Throws fem::InvertedElement; the state is then that of the failed step.
+  void step();
+
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] double dt() const { return dt_; }
+  [[nodiscard]] long steps() const { return steps_; }
+  void reset_time() { time_ = 0.0; }
+  void restore_clock(double time, long steps) {
+    time_ = time;
+    steps_ = steps;
+  }
+  [[nodiscard]] const Points& positions() const { return x_; }
+  [[nodiscard]] const Points& velocities() const { return v_; }
+  Points& mutable_positions() { return x_; }
+  Points& mutable_velocities() { return v_; }
+  [[nodiscard]] const Body& body() const { return body_; }
+
+  [[nodiscard]] double kinetic_energy() const;
+  [[nodiscard]] double potential_energy(double g) const;  // of the shell's weight
+  // The plate's reaction in the last step [N], and whether it pushed node a.
+  [[nodiscard]] double plate_force() const { return plate_force_; }
+  [[nodiscard]] bool loaded(int a) const { return loaded_[a] != 0; }
+
+ private:
+  const Body& body_;
+  double dt_;
+  double time_ = 0.0;
+  long steps_ = 0;
+  double damping_ = 0.0;
+  double gravity_ = 0.0;
+  double mu_ = 0.0;
+  std::function<double()> pressure_;
+  fem::RigidBody* container_ = nullptr;
+  Points x_, v_, f_;
+  std::vector<char> rim_, axis_, outer_, loaded_;
+  double rim_offset_ = 0.0;
+  double plate_force_ = 0.0;
+};
+
+}  // namespace snapjump::axi

@@ -1,0 +1,125 @@
+#include "popper/axi_shell.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <numbers>
+
+#include "io/vtu.hpp"
+#include "popper/state_io.hpp"
+
+namespace snapjump::popper {
+namespace {
+
+constexpr double kG = config::kStandardGravity;
+constexpr char kAxiMagic[] = "axisymmetric-1";
+
+axi::Body make_body(const config::Case& c, const Numerics& n) {
+  return axi::Body(axi::MeshSpec{c.shell.R, c.shell.h, c.shell.phi, n.axi_through, n.axi_along},
+                   fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+}
+
+}  // namespace
+
+AxiShell::AxiShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p)
+    : body_(make_body(c, n)),
+      dt_(kAxiStabilityFraction * 2.0 / body_.highest_frequency()),
+      omega_max_(2.0 * kAxiStabilityFraction / dt_),
+      dynamics_(body_, dt_) {
+  dynamics_.set_pressure(std::move(delta_p));
+  const auto& X = body_.nodes();
+  hole_area_ = std::numbers::pi * std::pow(X.r[body_.inner().back()], 2);
+  depth_outer_ = X.z[body_.outer().back()] - X.z[body_.apex()];
+}
+
+std::string AxiShell::describe() const {
+  const auto& s = body_.spec();
+  return fmt::format(
+      "  model       axisymmetric (9-node elements on the meridian section, the plate exact on "
+      "the nodes)\n  mesh        {} x {} elements (along the meridian x through h), {} nodes; "
+      "element {:.3g} mm along, {:.3g} mm through\n  time step   {:.3g} us ({} of the "
+      "stability limit 2 / omega_max, omega_max = {:.4g} rad/s)\n",
+      s.along, s.through, body_.num_nodes(), 1e3 * s.R * s.phi / s.along, 1e3 * s.h / s.through,
+      1e6 * dt_, kAxiStabilityFraction, omega_max_);
+}
+
+nlohmann::json AxiShell::numerics_json() const {
+  const auto& s = body_.spec();
+  return {{"model", "axisymmetric"},       {"elements", body_.num_elements()},
+          {"nodes", body_.num_nodes()},    {"elements_along", s.along},
+          {"elements_through", s.through}, {"dt", dt_},
+          {"omega_max", omega_max_}};
+}
+
+void AxiShell::start_held(double damping) {
+  dynamics_.hold_rim();
+  dynamics_.set_gravity(0.0);
+  dynamics_.set_damping(damping);
+}
+
+void AxiShell::start_on_plate(fem::RigidBody& container, double mu, double damping) {
+  // Lower the shell until its lowest point touches the plate.
+  const auto& x = dynamics_.positions();
+  const double lowest = *std::min_element(x.z.begin(), x.z.end());
+  dynamics_.translate_z(-lowest);
+  dynamics_.zero_velocities();
+  rim_offset_ = -lowest;
+  dynamics_.attach(container, mu, rim_offset_);
+  dynamics_.set_gravity(kG);
+  dynamics_.set_damping(damping);
+  dynamics_.restore_clock(0.0, 0);
+}
+
+ShellModel::Contact AxiShell::contact() const {
+  Contact c;
+  const auto& x = dynamics_.positions();
+  for (int a : body_.outer()) {
+    if (dynamics_.loaded(a)) {
+      c.any = true;
+      c.r = std::max(c.r, x.r[a]);
+    }
+  }
+  c.apex = dynamics_.loaded(body_.apex());
+  return c;
+}
+
+void AxiShell::save_state(std::ostream& out) const {
+  out.write(kAxiMagic, sizeof kAxiMagic);
+  put(out, dynamics_.time());
+  put(out, dynamics_.steps());
+  put(out, rim_offset_);
+  const auto& x = dynamics_.positions();
+  const auto& v = dynamics_.velocities();
+  for (const auto* a : {&x.r, &x.z, &v.r, &v.z}) put_vector(out, *a);
+}
+
+void AxiShell::load_state(std::istream& in, fem::RigidBody& container, double mu) {
+  char magic[sizeof kAxiMagic] = {};
+  in.read(magic, sizeof magic);
+  if (!in || std::memcmp(magic, kAxiMagic, sizeof kAxiMagic) != 0) {
+    throw std::runtime_error("the checkpoint is not an axisymmetric popper's");
+  }
+  double time = 0.0;
+  long steps = 0;
+  get(in, time);
+  get(in, steps);
+  get(in, rim_offset_);
+  const std::size_t n = body_.num_nodes();
+  auto& x = dynamics_.mutable_positions();
+  auto& v = dynamics_.mutable_velocities();
+  for (auto* a : {&x.r, &x.z, &v.r, &v.z}) get_vector(in, *a, n);
+  // The container's z is read after the model's state: the rim follows it from the next step.
+  dynamics_.attach(container, mu, rim_offset_);
+  dynamics_.set_gravity(kG);
+  dynamics_.set_damping(0.0);
+  dynamics_.restore_clock(time, steps);
+}
+
+void AxiShell::write_snapshot(const std::filesystem::path& path) const {
+  io::write_vtu(path, body_, dynamics_.positions(), dynamics_.velocities());
+}
+
+}  // namespace snapjump::popper

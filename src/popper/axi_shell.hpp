@@ -1,0 +1,78 @@
+// The axisymmetric discretisation of the shell (numerics.model = "axisymmetric"): the meridian
+// section with 9-node elements (axi::Body), explicit dynamics with the plate acting exactly on the
+// outer surface's nodes (axi::Dynamics). Independent of the MPM grid: a reference for the 3D
+// model, and fast enough for sweeps.
+#pragma once
+
+#include <memory>
+
+#include "axi/body.hpp"
+#include "axi/dynamics.hpp"
+#include "popper/popper.hpp"
+#include "popper/shell_model.hpp"
+
+namespace snapjump::popper {
+
+class AxiShell final : public ShellModel {
+ public:
+  AxiShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p);
+
+  [[nodiscard]] std::string describe() const override;
+  [[nodiscard]] nlohmann::json numerics_json() const override;
+  [[nodiscard]] double shell_mass() const override { return body_.total_mass(); }
+  [[nodiscard]] double undeformed_cavity_volume() const override {
+    return body_.cavity_volume(body_.nodes());
+  }
+  [[nodiscard]] double hole_area() const override { return hole_area_; }
+  [[nodiscard]] double undeformed_depth() const override { return depth_outer_; }
+  [[nodiscard]] double time_step() const override { return dt_; }
+
+  void start_held(double damping) override;
+  void start_on_plate(fem::RigidBody& container, double mu, double damping) override;
+  void set_damping(double c) override { dynamics_.set_damping(c); }
+  void step() override { dynamics_.step(); }
+  [[nodiscard]] double time() const override { return dynamics_.time(); }
+  [[nodiscard]] double dt() const override { return dynamics_.dt(); }
+  [[nodiscard]] long steps() const override { return dynamics_.steps(); }
+  void reset_time() override { dynamics_.reset_time(); }
+  void zero_velocities() override { dynamics_.zero_velocities(); }
+
+  [[nodiscard]] double kinetic_energy() const override { return dynamics_.kinetic_energy(); }
+  [[nodiscard]] double strain_energy() const override {
+    return body_.strain_energy(dynamics_.positions());
+  }
+  [[nodiscard]] double potential_energy(double g) const override {
+    return dynamics_.potential_energy(g);
+  }
+  [[nodiscard]] double cavity_volume() const override {
+    return body_.cavity_volume(dynamics_.positions());
+  }
+  [[nodiscard]] double apex_z() const override { return dynamics_.positions().z[body_.apex()]; }
+  [[nodiscard]] double outer_rim_z() const override {
+    return dynamics_.positions().z[body_.outer().back()];
+  }
+  [[nodiscard]] double plate_force() const override { return dynamics_.plate_force(); }
+  [[nodiscard]] Contact contact() const override;
+
+  void save_state(std::ostream& out) const override;
+  void load_state(std::istream& in, fem::RigidBody& container, double mu) override;
+  void write_snapshot(const std::filesystem::path& path) const override;
+
+  [[nodiscard]] const axi::Body& body() const { return body_; }
+  [[nodiscard]] const axi::Dynamics& dynamics() const { return dynamics_; }
+
+ private:
+  axi::Body body_;
+  double dt_ = 0.0;
+  double omega_max_ = 0.0;
+  axi::Dynamics dynamics_;
+  double hole_area_ = 0.0;
+  double depth_outer_ = 0.0;
+  double rim_offset_ = 0.0;  // the grounding's shift of the whole shell
+};
+
+// The time step of the axisymmetric model: this fraction of the stability limit 2 / omega_max of
+// central differences, omega_max the undeformed body's highest frequency.
+inline constexpr double kAxiStabilityFraction = 0.3;
+
+}  // namespace snapjump::popper

@@ -1,0 +1,210 @@
+#include "popper/mpm_shell.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "io/vtu.hpp"
+#include "popper/state_io.hpp"
+
+namespace snapjump::popper {
+namespace {
+
+constexpr double kG = config::kStandardGravity;
+
+std::unique_ptr<fem::Body> make_body(const config::Case& c, const Numerics& n) {
+  return std::make_unique<fem::Body>(
+      mesh::make_cap_mesh(n.cap),
+      fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+}
+
+}  // namespace
+
+MpmShell::MpmShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p)
+    : numerics_(n), body_(make_body(c, n)), delta_p_(std::move(delta_p)) {
+  const auto& X = body_->mesh().nodes;
+  // The hole of the container is the inner rim circle, whose area the pressure on the inner faces
+  // projects onto: pressure forces on shell and container then cancel exactly.
+  double rim_r = 0.0;
+  int count = 0;
+  std::vector<char> outer(X.size(), 0), inner(X.size(), 0);
+  for (int a : body_->mesh().outer) outer[a] = 1;
+  for (const auto& f : body_->mesh().inner_faces) {
+    for (int a : f) inner[a] = 1;
+  }
+  for (int a : body_->mesh().clamped) {
+    if (inner[a]) {
+      rim_r += std::hypot(X.x[a], X.y[a]);
+      ++count;
+    }
+    if (outer[a]) outer_rim_.push_back(a);
+  }
+  hole_area_ = std::numbers::pi * std::pow(rim_r / count, 2);
+  depth_outer_ = outer_rim_z(X) - X.z[body_->mesh().apex];
+  forces_ = std::make_unique<mpm::BodyForces>(*body_, kG, [this](double) { return delta_p_(); });
+  // The grid bound assumes speeds up to 2 m/s (a jump of 20 cm); faster particles stop the run
+  // with a StepError from the stepper's own CFL check.
+  time_step_ = mpm::choose_time_step(body_->stable_time_step(n.cfl), n.dx, 2.0, 0.5);
+}
+
+std::string MpmShell::describe() const {
+  const auto& n = numerics_;
+  return fmt::format(
+      "  model       3D MPM (quadratic tetrahedra on particles, the plate through the grid)\n"
+      "  mesh        {} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} "
+      "layers)\n  grid        {:.3g} mm cells (h / {:.3g})\n  time step   {:.3g} us (elastic "
+      "bound {:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
+      body_->num_elements(), body_->num_nodes(), 1e3 * n.cap.element_size, n.cap.layers, 1e3 * n.dx,
+      n.cap.h / n.dx, 1e6 * time_step_.dt, 1e6 * time_step_.elastic, 1e6 * time_step_.grid,
+      time_step_.limiting);
+}
+
+nlohmann::json MpmShell::numerics_json() const {
+  return {{"model", "3d"},
+          {"elements", body_->num_elements()},
+          {"particles", body_->num_nodes()},
+          {"element_size", numerics_.cap.element_size},
+          {"layers", numerics_.cap.layers},
+          {"dx", numerics_.dx},
+          {"dt", time_step_.dt},
+          {"dt_elastic", time_step_.elastic},
+          {"dt_grid", time_step_.grid},
+          {"end_time", numerics_.end_time}};
+}
+
+double MpmShell::outer_rim_z(const mesh::Points& x) const {
+  double z = 0.0;
+  for (int a : outer_rim_) z += x.z[a];
+  return z / static_cast<double>(outer_rim_.size());
+}
+
+const mesh::Points& MpmShell::positions() const {
+  if (stepper_) return stepper_->particles().x;
+  if (driver_) return driver_->positions();
+  return body_->mesh().nodes;
+}
+
+void MpmShell::start_held(double damping) {
+  fem::ExplicitOptions eo;
+  eo.cfl = numerics_.cfl;
+  eo.damping = damping;
+  eo.pressure = [this](double) { return delta_p_(); };
+  driver_ = std::make_unique<fem::ExplicitDriver>(*body_, eo);
+  stepper_.reset();
+}
+
+void MpmShell::start_on_plate(fem::RigidBody& container, double mu, double damping) {
+  // Lower the shell until its lowest point is just inside the plate's reach (the plate acts on
+  // the nodes at z <= 0, a particle's stencil reaches 1.5 cells).
+  auto x = positions();
+  double lowest = std::numeric_limits<double>::infinity();
+  for (double z : x.z) lowest = std::min(lowest, z);
+  const double shift = 1.2 * numerics_.dx - lowest;
+  for (auto& z : x.z) z += shift;
+  auto particles = mpm::particles_of(*body_);
+  particles.x = x;
+  build_stepper(std::move(particles), container, mu, damping);
+  driver_.reset();
+}
+
+void MpmShell::build_stepper(mpm::Particles particles, fem::RigidBody& container, double mu,
+                             double damping) {
+  stepper_ = std::make_unique<mpm::Stepper>(
+      std::move(particles), *forces_,
+      mpm::StepperOptions{time_step_.dt, numerics_.dx, 0.5, damping});
+  stepper_->add_rule(std::make_unique<mpm::ClampRule>(container));
+  plate_ = &dynamic_cast<mpm::PlateRule&>(stepper_->add_rule(std::make_unique<mpm::PlateRule>(mu)));
+  stepper_->add_rigid_body(container);
+}
+
+void MpmShell::set_damping(double c) {
+  if (stepper_) stepper_->set_damping(c);
+}
+
+void MpmShell::step() {
+  if (stepper_) {
+    stepper_->step();
+  } else {
+    driver_->step();
+  }
+}
+
+double MpmShell::time() const { return stepper_ ? stepper_->time() : driver_->time(); }
+double MpmShell::dt() const { return stepper_ ? stepper_->dt() : driver_->dt(); }
+long MpmShell::steps() const { return stepper_ ? stepper_->steps() : driver_->steps(); }
+void MpmShell::reset_time() { stepper_->reset_time(); }
+
+void MpmShell::zero_velocities() {
+  auto& p = stepper_->particles();
+  std::fill(p.v.x.begin(), p.v.x.end(), 0.0);
+  std::fill(p.v.y.begin(), p.v.y.end(), 0.0);
+  std::fill(p.v.z.begin(), p.v.z.end(), 0.0);
+  std::fill(p.C.begin(), p.C.end(), 0.0);
+}
+
+double MpmShell::kinetic_energy() const {
+  return stepper_ ? stepper_->kinetic_energy() : driver_->kinetic_energy();
+}
+double MpmShell::strain_energy() const { return body_->strain_energy(positions()); }
+double MpmShell::potential_energy(double g) const {
+  const auto& p = stepper_->particles();
+  double pot = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) pot += p.mass[i] * g * p.x.z[i];
+  return pot;
+}
+double MpmShell::cavity_volume() const { return body_->cavity_volume(positions()); }
+double MpmShell::apex_z() const { return positions().z[body_->mesh().apex]; }
+double MpmShell::outer_rim_z() const { return outer_rim_z(positions()); }
+
+ShellModel::Contact MpmShell::contact() const {
+  // The outer particles that the plate carries, i.e. that have at least half of their stencil
+  // weight on the nodes the plate pushed in the last step. r is the outermost; the contact is a
+  // disk when the apex is among them.
+  const auto& p = stepper_->particles();
+  const double dx = stepper_->dx();
+  const auto touching = [&](int a) {
+    return mpm::plate_carries(*plate_, dx, p.x.x[a], p.x.y[a], p.x.z[a]);
+  };
+  Contact c;
+  for (int a : body_->mesh().outer) {
+    if (touching(a)) {
+      c.any = true;
+      c.r = std::max(c.r, std::hypot(p.x.x[a], p.x.y[a]));
+    }
+  }
+  c.apex = c.any && touching(body_->mesh().apex);
+  return c;
+}
+
+void MpmShell::save_state(std::ostream& out) const {
+  const auto& p = stepper_->particles();
+  put(out, stepper_->time());
+  put(out, stepper_->steps());
+  for (const auto* v : {&p.x.x, &p.x.y, &p.x.z, &p.v.x, &p.v.y, &p.v.z, &p.C}) put_vector(out, *v);
+}
+
+void MpmShell::load_state(std::istream& in, fem::RigidBody& container, double mu) {
+  double time = 0.0;
+  long steps = 0;
+  get(in, time);
+  get(in, steps);
+  auto particles = mpm::particles_of(*body_);
+  const std::size_t n = particles.size();
+  for (auto* v : {&particles.x.x, &particles.x.y, &particles.x.z, &particles.v.x, &particles.v.y,
+                  &particles.v.z}) {
+    get_vector(in, *v, n);
+  }
+  get_vector(in, particles.C, 9 * n);
+  build_stepper(std::move(particles), container, mu, 0.0);
+  stepper_->restore_clock(time, steps);
+  driver_.reset();
+}
+
+void MpmShell::write_snapshot(const std::filesystem::path& path) const {
+  io::write_vtu(path, *body_, stepper_->particles().x, stepper_->particles().v);
+}
+
+}  // namespace snapjump::popper

@@ -1,0 +1,78 @@
+// The 3D discretisation of the shell, the paper's: Total Lagrangian quadratic tetrahedra whose
+// nodes are MPM particles; the rim's clamp and the plate act through the background grid.
+// Phases 1-2 run the finite elements alone (fem::ExplicitDriver), since the grid has nothing to
+// do there; from the grounding on, the MPM stepper.
+#pragma once
+
+#include <memory>
+
+#include "fem/body.hpp"
+#include "fem/explicit.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/rules.hpp"
+#include "mpm/stepper.hpp"
+#include "popper/popper.hpp"
+#include "popper/shell_model.hpp"
+
+namespace snapjump::popper {
+
+class MpmShell final : public ShellModel {
+ public:
+  MpmShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p);
+
+  [[nodiscard]] std::string describe() const override;
+  [[nodiscard]] nlohmann::json numerics_json() const override;
+  [[nodiscard]] double shell_mass() const override { return body_->total_mass(); }
+  [[nodiscard]] double undeformed_cavity_volume() const override {
+    return body_->cavity_volume(body_->mesh().nodes);
+  }
+  [[nodiscard]] double hole_area() const override { return hole_area_; }
+  [[nodiscard]] double undeformed_depth() const override { return depth_outer_; }
+  [[nodiscard]] double time_step() const override { return time_step_.dt; }
+
+  void start_held(double damping) override;
+  void start_on_plate(fem::RigidBody& container, double mu, double damping) override;
+  void set_damping(double c) override;
+  void step() override;
+  [[nodiscard]] double time() const override;
+  [[nodiscard]] double dt() const override;
+  [[nodiscard]] long steps() const override;
+  void reset_time() override;
+  void zero_velocities() override;
+
+  [[nodiscard]] double kinetic_energy() const override;
+  [[nodiscard]] double strain_energy() const override;
+  [[nodiscard]] double potential_energy(double g) const override;
+  [[nodiscard]] double cavity_volume() const override;
+  [[nodiscard]] double apex_z() const override;
+  [[nodiscard]] double outer_rim_z() const override;
+  [[nodiscard]] double plate_force() const override { return plate_->force(); }
+  [[nodiscard]] Contact contact() const override;
+
+  void save_state(std::ostream& out) const override;
+  void load_state(std::istream& in, fem::RigidBody& container, double mu) override;
+  void write_snapshot(const std::filesystem::path& path) const override;
+
+  [[nodiscard]] const fem::Body& body() const { return *body_; }
+  [[nodiscard]] const mpm::Stepper& stepper() const { return *stepper_; }
+
+ private:
+  [[nodiscard]] const mesh::Points& positions() const;
+  [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
+  void build_stepper(mpm::Particles particles, fem::RigidBody& container, double mu,
+                     double damping);
+
+  Numerics numerics_;
+  std::unique_ptr<fem::Body> body_;
+  std::unique_ptr<mpm::BodyForces> forces_;
+  std::function<double()> delta_p_;
+  std::unique_ptr<fem::ExplicitDriver> driver_;  // phases 1-2
+  std::unique_ptr<mpm::Stepper> stepper_;        // from the grounding on
+  mpm::PlateRule* plate_ = nullptr;
+  mpm::TimeStep time_step_;
+  double hole_area_ = 0.0;
+  double depth_outer_ = 0.0;
+  std::vector<int> outer_rim_;  // clamped nodes of the outer surface
+};
+
+}  // namespace snapjump::popper

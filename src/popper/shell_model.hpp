@@ -1,0 +1,90 @@
+// What the popper's protocol needs from a discretisation of the shell: the shell alone with its
+// rim held (buckle, set delta_p_j), then the shell on the plate with its rim glued to the
+// container (ground, release, the jump), and what the experiment measures of it. The protocol
+// (popper.hpp) drives either discretisation through this interface and knows neither:
+//   - MpmShell (3D, the paper's method): quadratic tetrahedra on MPM particles, the plate and the
+//     clamp acting through the background grid;
+//   - AxiShell: the meridian section with 9-node axisymmetric elements, the plate acting exactly
+//     on the outer surface's nodes.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "config/case.hpp"
+#include "fem/rigid_body.hpp"
+
+namespace snapjump::popper {
+
+struct Numerics;
+
+class ShellModel {
+ public:
+  virtual ~ShellModel() = default;
+
+  // Lines for the run's header (each starts with two spaces and ends with a newline), and the
+  // same facts for summary.json's "numerics".
+  [[nodiscard]] virtual std::string describe() const = 0;
+  [[nodiscard]] virtual nlohmann::json numerics_json() const = 0;
+
+  [[nodiscard]] virtual double shell_mass() const = 0;
+  // Cavity under the undeformed shell, to its rim plane [m^3].
+  [[nodiscard]] virtual double undeformed_cavity_volume() const = 0;
+  // Area that the pressure on the inner surface projects onto: the inner rim circle [m^2].
+  [[nodiscard]] virtual double hole_area() const = 0;
+  // Apex to the outer rim plane, undeformed [m].
+  [[nodiscard]] virtual double undeformed_depth() const = 0;
+  // The time step of the physical phase [s].
+  [[nodiscard]] virtual double time_step() const = 0;
+
+  // Phases 1-2: the rim held in the air, mass-proportional damping c [1/s], no plate. The
+  // pressure difference (outside minus inside) comes from the function given at construction.
+  virtual void start_held(double damping) = 0;
+  // Phase 3 on: the shell lowered onto the plate (its lowest point where the plate meets it),
+  // its rim glued to the container from now on, the plate acting with Coulomb friction mu,
+  // gravity on. The container's z is 0 there.
+  virtual void start_on_plate(fem::RigidBody& container, double mu, double damping) = 0;
+  virtual void set_damping(double c) = 0;
+  virtual void step() = 0;
+  [[nodiscard]] virtual double time() const = 0;
+  [[nodiscard]] virtual double dt() const = 0;
+  [[nodiscard]] virtual long steps() const = 0;
+  virtual void reset_time() = 0;
+  virtual void zero_velocities() = 0;
+
+  [[nodiscard]] virtual double kinetic_energy() const = 0;
+  [[nodiscard]] virtual double strain_energy() const = 0;
+  // Of the shell's weight, g along -z [J].
+  [[nodiscard]] virtual double potential_energy(double g) const = 0;
+  [[nodiscard]] virtual double cavity_volume() const = 0;
+  [[nodiscard]] virtual double apex_z() const = 0;       // outer surface on the axis
+  [[nodiscard]] virtual double outer_rim_z() const = 0;  // outer rim circle
+  // The plate's reaction in the last step [N].
+  [[nodiscard]] virtual double plate_force() const = 0;
+  // Where the plate carries load, as the camera sees it: the outermost radius of the outer
+  // surface it pushed in the last step, and whether it pushed the apex.
+  struct Contact {
+    bool any = false, apex = false;
+    double r = 0.0;
+  };
+  [[nodiscard]] virtual Contact contact() const = 0;
+
+  // The state on the plate (clock, positions, velocities and whatever the model carries), to
+  // continue a stopped run; load_state() is called on a model built from the same case, after
+  // which it is on the plate, glued to `container`.
+  virtual void save_state(std::ostream& out) const = 0;
+  virtual void load_state(std::istream& in, fem::RigidBody& container, double mu) = 0;
+  // A ParaView snapshot of the current state (.vtu).
+  virtual void write_snapshot(const std::filesystem::path& path) const = 0;
+};
+
+// The discretisation that the case's numerics.model names; delta_p gives the pressure difference
+// on the inner surface at each step. Throws config::CaseError.
+std::unique_ptr<ShellModel> make_shell_model(const config::Case& c, const Numerics& n,
+                                             std::function<double()> delta_p);
+
+}  // namespace snapjump::popper
