@@ -57,7 +57,7 @@ nlohmann::json AxiShell::numerics_json() const {
 void AxiShell::start_held(double damping) {
   dynamics_.hold_rim();
   dynamics_.set_gravity(0.0);
-  dynamics_.set_damping(damping);
+  dynamics_.set_damping(kAxiHeldDampingFactor * damping);
 }
 
 void AxiShell::start_on_plate(fem::RigidBody& container, double mu, double damping) {

@@ -21,6 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr std::string_view kResolutionKey = "numerics.resolution";
+constexpr std::string_view kModelKey = "numerics.model";
 
 std::string at(const fs::path& file, const toml::source_region& r) {
   return fmt::format("{}:{}", file.string(), r.begin.line);
@@ -31,11 +32,15 @@ std::string known_keys() {
   for (const auto& k : config::quantity_keys()) s += fmt::format(" {}.{}", k.table, k.name);
   s += ' ';
   s += kResolutionKey;
+  s += ' ';
+  s += kModelKey;
   return s;
 }
 
 void check_key(const fs::path& file, const toml::source_region& r, const std::string& key) {
-  if (key == kResolutionKey || config::find_quantity_key(key) != nullptr) return;
+  if (key == kResolutionKey || key == kModelKey || config::find_quantity_key(key) != nullptr) {
+    return;
+  }
   throw SweepError(fmt::format("{}: unknown case key '{}'; a sweep may set or vary:{}", at(file, r),
                                key, known_keys()));
 }
@@ -175,9 +180,15 @@ std::string read_text(const fs::path& p) {
 
 config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitParser& parser) {
   std::vector<config::Override> overrides;
-  std::optional<std::string> resolution;
+  std::optional<std::string> resolution, model;
   const auto add = [&](const Setting& s) {
-    if (s.key == kResolutionKey) {
+    if (s.key == kModelKey) {
+      if (!config::parse_model(s.text)) {
+        throw config::CaseError(
+            fmt::format("{}: {} must be \"3d\" or \"axisymmetric\"", s.origin, kModelKey));
+      }
+      model = s.text;
+    } else if (s.key == kResolutionKey) {
       if (!config::parse_resolution(s.text)) {
         throw config::CaseError(fmt::format("{}: {} must be \"coarse\", \"default\" or \"fine\"",
                                             s.origin, kResolutionKey));
@@ -192,6 +203,7 @@ config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitP
   auto c = spec.base ? config::load_case_file(*spec.base, overrides, &parser)
                      : config::default_case(overrides, &parser);
   if (resolution) c.numerics.resolution = *config::parse_resolution(*resolution);
+  if (model) c.numerics.model = *config::parse_model(*model);
   if (!spec.title.empty()) {
     std::string vals;
     for (const auto& s : run.settings) vals += fmt::format(", {} = {}", s.key, s.text);

@@ -209,6 +209,8 @@ TEST(CaseFile, UnphysicalValues) {
                {"protocol.delta_p_j", "[0, p0)"});
   expect_error(kMinimal + "[numerics]\nresolution = \"ultra\"\n",
                {"case.toml:11", "numerics.resolution"});
+  expect_error(kMinimal + "[numerics]\nmodel = \"2d\"\n",
+               {"case.toml:11", "numerics.model", "\"3d\" or \"axisymmetric\""});
   expect_error(kMinimal + "[numerics]\nelements_through_thickness = 0\n",
                {"case.toml:11", "elements_through_thickness"});
   expect_error(kMinimal + "[gas]\ncontainer_volume = \"0 mL\"\n",
@@ -228,8 +230,10 @@ TEST(CaseFile, WrittenInSIAndReadBackTheSame) {
   const std::vector<Override> o = {{"protocol.delta_p_j", "2.5 kPa", "--delta-p-j"}};
   auto c = parse_case(kMinimal, "case.toml", o);
   c.numerics.resolution = Resolution::Coarse;
+  c.numerics.model = Model::Axisymmetric;
   c.numerics.end_time = 0.3;
   const auto r = parse_case(to_toml(c), "written.toml");
+  EXPECT_EQ(r.numerics.model, Model::Axisymmetric);
   EXPECT_EQ(r.title, c.title);
   EXPECT_EQ(r.shell.R, c.shell.R);
   EXPECT_EQ(r.shell.h, c.shell.h);

@@ -107,6 +107,20 @@ popper.net_weight = { from = "0.1 N", to = "10 N", count = 3, scale = "log" }
   EXPECT_DOUBLE_EQ(*c4.numerics.end_time, 0.020);
 }
 
+TEST(SweepSpec, EitherModelCanBeSetOrVaried) {
+  const auto spec = parse_spec(R"(
+[vary]
+numerics.model = ["3d", "axisymmetric"]
+)",
+                               "/data/s.toml");
+  ASSERT_EQ(spec.runs.size(), 2u);
+  EXPECT_EQ(make_case(spec, spec.runs[0]).numerics.model, config::Model::ThreeD);
+  EXPECT_EQ(make_case(spec, spec.runs[1]).numerics.model, config::Model::Axisymmetric);
+  // The case file a run is repeated from carries the model.
+  const auto again = config::parse_case(config::to_toml(make_case(spec, spec.runs[1])), "again");
+  EXPECT_EQ(again.numerics.model, config::Model::Axisymmetric);
+}
+
 TEST(SweepSpec, ABaseCaseFileIsReadRelativeToTheSweepFile) {
   const auto dir = scratch("base");
   write(dir / "cases" / "thick.toml", R"(
@@ -154,6 +168,11 @@ TEST(SweepSpec, MistakesNameTheKeyAndTheLine) {
               (void)parse_spec(
                   "[set]\nnumerics.resolution = \"medium\"\n[vary]\nfriction.mu = [0]\n", "s.toml");
             }).find("numerics.resolution"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              (void)parse_spec("[set]\nnumerics.model = \"2d\"\n[vary]\nfriction.mu = [0]\n",
+                               "s.toml");
+            }).find("numerics.model must be"),
             std::string::npos);
   EXPECT_NE(error_of([] {
               (void)parse_spec("base = \"nowhere.toml\"\n", "/tmp/s.toml");

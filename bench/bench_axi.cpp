@@ -1,0 +1,73 @@
+// The axisymmetric popper (numerics.model = "axisymmetric"): the cost of one step of the default
+// (30, 2.0) mm popper's shell at 2, 4 and 8 elements through h, and the whole default popper's
+// jump (buckle, set, ground, release to the apex of the flight) at each preset, on one core.
+// Run: build/bench_axi (docs/performance.md).
+#include <benchmark/benchmark.h>
+
+#include "popper/popper.hpp"
+
+namespace {
+
+using namespace snapjump;
+
+config::Case axi_case(config::Resolution r) {
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = r;
+  return c;
+}
+
+config::Resolution preset(std::int64_t through) {
+  return through <= 2 ? config::Resolution::Coarse
+                      : (through <= 4 ? config::Resolution::Default : config::Resolution::Fine);
+}
+
+// One step on the plate, after the preparation (the state of the release).
+void BM_AxiStep(benchmark::State& state) {
+  const auto c = axi_case(preset(state.range(0)));
+  popper::Popper pop(c, popper::resolve_numerics(c));
+  if (!pop.prepare().held) state.SkipWithError("the shell did not stay inverted");
+  pop.release();
+  for (auto _ : state) pop.step();
+  state.counters["elements_through_h"] = static_cast<double>(state.range(0));
+  state.counters["dt_us"] = 1e6 * pop.dt();
+  state.counters["steps_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_AxiStep)->Arg(2)->Arg(4)->Arg(8)->Unit(benchmark::kMicrosecond);
+
+// The whole run of `snapjump run --model axisymmetric` without its files: to the apex of the
+// flight (off the plate for 5 ms and coming down) or 1 s.
+void BM_AxiPopperJump(benchmark::State& state) {
+  const auto c = axi_case(preset(state.range(0)));
+  double simulated = 0.0;
+  for (auto _ : state) {
+    popper::Popper pop(c, popper::resolve_numerics(c));
+    if (!pop.prepare().held) {
+      state.SkipWithError("the shell did not stay inverted");
+      break;
+    }
+    pop.release();
+    double airborne = -1.0, next = 1e-4;
+    while (pop.time() < 1.0) {
+      pop.step();
+      if (pop.time() + 1e-12 < next) continue;
+      next += 1e-4;
+      const auto s = pop.sample();
+      if (s.contact == measure::ContactState::None && s.F == 0.0) {
+        if (airborne < 0 && s.vz > 0) airborne = s.t;
+      } else {
+        airborne = -1.0;
+      }
+      if (airborne >= 0 && s.t - airborne > 5e-3 && s.vz < 0) break;
+    }
+    simulated = pop.time();
+  }
+  state.counters["elements_through_h"] = static_cast<double>(state.range(0));
+  state.counters["simulated_s"] = simulated;
+}
+BENCHMARK(BM_AxiPopperJump)->Arg(2)->Arg(4)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,155 @@
+// Does the inverted cap snap back by itself? The popper's phases 1-2 with the rim held in the air
+// (no plate, no gas law): raise the suction to 1.4 p_c until the shell inverts, then bring the
+// pressure difference to a final value (default 0: no suction) and let it settle for 0.15 s.
+// Prints whether the shell stays inverted (bistable at that pressure) and where its lowest point
+// is. The answer depends on how finely the fold next to the clamped rim is resolved
+// (docs/axisymmetric.md, "The inverted cap at rest").
+//
+//   build/inverted_cap axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm]
+//   build/inverted_cap 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm]
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <numbers>
+#include <string>
+
+#include "axi/body.hpp"
+#include "axi/dynamics.hpp"
+#include "fem/body.hpp"
+#include "fem/explicit.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "theory/scaling.hpp"
+
+namespace {
+
+using namespace snapjump;
+
+constexpr double kE = 1.2e6, kNu = 0.45, kRho = 1160.0;
+
+struct Result {
+  double apex_over_rim = 0.0;  // apex height above the outer rim [m]
+  double lowest_r = 0.0, lowest_below_rim = 0.0;
+};
+
+// Runs the protocol's pressure history on a driver with step(), time(), apex_z(), rim_z(),
+// lowest(r, z); p is the pressure difference the driver reads.
+template <typename Step, typename Time, typename State>
+Result run(double& p, double pc, double final_dp, Step step, Time time, State state) {
+  while (time() < 0.1) {
+    p = 1.4 * pc * std::min(1.0, time() / 0.02);
+    step();
+  }
+  const double t0 = time();
+  while (time() < t0 + 0.15) {
+    const double f = std::min(1.0, (time() - t0) / 0.05);
+    p = 1.4 * pc + f * (final_dp * pc - 1.4 * pc);
+    step();
+  }
+  return state();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 4) {
+    fmt::print(stderr,
+               "usage: {0} axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm]\n"
+               "       {0} 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm]\n",
+               argv[0]);
+    return 2;
+  }
+  try {
+    const std::string model = argv[1];
+    const double final_dp = argc > 4 ? std::atof(argv[4]) : 0.0;
+    const double R = argc > 6 ? 1e-3 * std::atof(argv[5]) : 0.030;
+    const double h = argc > 6 ? 1e-3 * std::atof(argv[6]) : 0.002;
+    const double phi = 80.0 * std::numbers::pi / 180.0;
+    const double pc = theory::zoelly_pressure(kE, h, R, kNu);
+    const auto material = fem::Material::from_young(kE, kNu, kRho);
+    // The popper's preparation damping; the axisymmetric model's held phases use three times it.
+    const double damping = 0.3 * std::sqrt(kE / kRho) / R;
+    double p = 0.0;
+    Result r;
+    std::string mesh;
+    if (model == "axisymmetric") {
+      const int through = std::atoi(argv[2]), along = std::atoi(argv[3]);
+      const axi::Body body({R, h, phi, through, along}, material);
+      axi::Dynamics d(body, 0.3 * 2.0 / body.highest_frequency());
+      d.set_pressure([&p] { return p; });
+      d.set_damping(3.0 * damping);
+      const auto& x = d.positions();
+      r = run(
+          p, pc, final_dp, [&] { d.step(); }, [&] { return d.time(); },
+          [&] {
+            Result s;
+            const double rim = x.z[body.outer().back()];
+            s.apex_over_rim = x.z[body.apex()] - rim;
+            double lowest = rim;
+            for (int a : body.outer()) {
+              if (x.z[a] < lowest) {
+                lowest = x.z[a];
+                s.lowest_r = x.r[a];
+              }
+            }
+            s.lowest_below_rim = rim - lowest;
+            return s;
+          });
+      mesh = fmt::format("axisymmetric, {} through h x {} along ({:.3g} mm along)", through, along,
+                         1e3 * R * phi / along);
+    } else if (model == "3d") {
+      const int layers = std::atoi(argv[2]);
+      const double size = 1e-3 * std::atof(argv[3]);
+      const fem::Body body(mesh::make_cap_mesh({R, h, phi, size, layers}), material);
+      fem::ExplicitOptions o;
+      o.cfl = 0.4;
+      o.damping = damping;
+      o.pressure = [&p](double) { return p; };
+      fem::ExplicitDriver d(body, o);
+      const auto& m = body.mesh();
+      std::vector<char> outer(body.num_nodes(), 0);
+      for (int a : m.outer) outer[a] = 1;
+      r = run(
+          p, pc, final_dp, [&] { d.step(); }, [&] { return d.time(); },
+          [&] {
+            const auto& x = d.positions();
+            double rim = 0.0;
+            int n = 0;
+            for (int a : m.clamped) {
+              if (outer[a]) {
+                rim += x.z[a];
+                ++n;
+              }
+            }
+            rim /= n;
+            Result s;
+            s.apex_over_rim = x.z[m.apex] - rim;
+            double lowest = rim;
+            for (int a : m.outer) {
+              if (x.z[a] < lowest) {
+                lowest = x.z[a];
+                s.lowest_r = std::hypot(x.x[a], x.y[a]);
+              }
+            }
+            s.lowest_below_rim = rim - lowest;
+            return s;
+          });
+      mesh = fmt::format("3D, {} layers, element size {:.3g} mm, {} nodes", layers, 1e3 * size,
+                         body.num_nodes());
+    } else {
+      fmt::print(stderr, "model must be axisymmetric or 3d\n");
+      return 2;
+    }
+    fmt::print(
+        "(R, h) = ({:.3g}, {:.3g}) mm, {}: at delta_p = {:.2f} p_c the shell {} (apex "
+        "{:.2f} mm above the outer rim; lowest outer point at r = {:.2f} mm, {:.2f} mm "
+        "below the rim)\n",
+        1e3 * R, 1e3 * h, mesh, final_dp, r.apex_over_rim > 0 ? "stays inverted" : "snaps back",
+        1e3 * r.apex_over_rim, 1e3 * r.lowest_r, 1e3 * r.lowest_below_rim);
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "error: {}\n", e.what());
+    return 1;
+  }
+  return 0;
+}
