@@ -47,5 +47,25 @@ TEST(RunResume, PausedAndResumedRunMatchesAStraightOne) {
   EXPECT_EQ(read(paused / "run.pvd"), read(straight / "run.pvd"));
 }
 
+TEST(RunResume, AxisymmetricRunResumesExactly) {
+  // The same through the axisymmetric model, paused in the ring stage.
+  const auto base = std::filesystem::temp_directory_path() / "snapjump_resume_axi_test";
+  std::filesystem::remove_all(base);
+  const auto straight = base / "straight", paused = base / "paused";
+  const std::vector<std::string> common = {"run",    "--model", "axisymmetric", "--resolution",
+                                           "coarse", "--quiet", "--end-time",   "60ms"};
+  auto a = common, b = common;
+  a.insert(a.end(), {"--output", straight.string()});
+  b.insert(b.end(), {"--pause-at", "25ms", "--output", paused.string()});
+  ASSERT_EQ(run(a), 0);
+  ASSERT_EQ(run(b), 0);
+  EXPECT_NE(read(paused / "series.csv"), read(straight / "series.csv"));
+  ASSERT_EQ(run({"run", "--resume", paused.string(), "--quiet"}), 0);
+  EXPECT_EQ(read(paused / "series.csv"), read(straight / "series.csv"));
+  EXPECT_EQ(read(paused / "run.pvd"), read(straight / "run.pvd"));
+  EXPECT_EQ(read(paused / "snapshots" / "frame_00010.vtu"),
+            read(straight / "snapshots" / "frame_00010.vtu"));
+}
+
 }  // namespace
 }  // namespace snapjump::app
