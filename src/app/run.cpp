@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "app/checkpoint.hpp"
 #include "app/cli.hpp"
 #include "config/units.hpp"
 #include "io/prediction_report.hpp"
@@ -65,73 +66,6 @@ void write_json_file(const fs::path& path, const nlohmann::json& doc) {
     if (!f) throw std::runtime_error(fmt::format("cannot write {}", tmp));
   }
   fs::rename(tmp, path);
-}
-
-// What the release loop needs besides the popper, saved in checkpoints with it.
-struct LoopState {
-  double next_sample = 0.0, next_snapshot = 0.0, next_checkpoint = 0.0;
-  double airborne_since = -1.0;
-  std::uint64_t rows = 0;  // rows of series.csv that belong to this state
-  std::vector<std::pair<double, std::string>> frames;
-};
-
-constexpr char kLoopMagic[] = "snapjump-run-loop-1";
-
-void save_checkpoint(const fs::path& dir, const popper::Popper& pop, const LoopState& s) {
-  const fs::path tmp = dir / "checkpoint.bin.tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary);
-    pop.save_state(f);
-    f.write(kLoopMagic, sizeof kLoopMagic);
-    const double d[4] = {s.next_sample, s.next_snapshot, s.next_checkpoint, s.airborne_since};
-    f.write(reinterpret_cast<const char*>(d), sizeof d);
-    f.write(reinterpret_cast<const char*>(&s.rows), sizeof s.rows);
-    const std::uint64_t n = s.frames.size();
-    f.write(reinterpret_cast<const char*>(&n), sizeof n);
-    for (const auto& [t, name] : s.frames) {
-      const std::uint64_t len = name.size();
-      f.write(reinterpret_cast<const char*>(&t), sizeof t);
-      f.write(reinterpret_cast<const char*>(&len), sizeof len);
-      f.write(name.data(), static_cast<std::streamsize>(len));
-    }
-    if (!f) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-  }
-  fs::rename(tmp, dir / "checkpoint.bin");
-}
-
-LoopState load_checkpoint(const fs::path& dir, popper::Popper& pop) {
-  std::ifstream f(dir / "checkpoint.bin", std::ios::binary);
-  if (!f) {
-    throw config::CaseError(
-        fmt::format("--resume {}: no checkpoint.bin; the run stopped before its first checkpoint "
-                    "(run it again)",
-                    dir.string()));
-  }
-  pop.load_state(f);
-  char magic[sizeof kLoopMagic] = {};
-  f.read(magic, sizeof magic);
-  if (!f || std::string(magic) != kLoopMagic) throw std::runtime_error("checkpoint.bin is damaged");
-  LoopState s;
-  double d[4];
-  f.read(reinterpret_cast<char*>(d), sizeof d);
-  s.next_sample = d[0];
-  s.next_snapshot = d[1];
-  s.next_checkpoint = d[2];
-  s.airborne_since = d[3];
-  f.read(reinterpret_cast<char*>(&s.rows), sizeof s.rows);
-  std::uint64_t n = 0;
-  f.read(reinterpret_cast<char*>(&n), sizeof n);
-  for (std::uint64_t k = 0; k < n && f; ++k) {
-    double t = 0.0;
-    std::uint64_t len = 0;
-    f.read(reinterpret_cast<char*>(&t), sizeof t);
-    f.read(reinterpret_cast<char*>(&len), sizeof len);
-    std::string name(len, '\0');
-    f.read(name.data(), static_cast<std::streamsize>(len));
-    s.frames.emplace_back(t, name);
-  }
-  if (!f) throw std::runtime_error("checkpoint.bin is truncated");
-  return s;
 }
 
 void print_numerics(std::ostream& out, const popper::Popper& pop) {
@@ -296,7 +230,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
         summary["preparation"] = before["preparation"];
       }
     }
-    loop = load_checkpoint(dir, pop);
+    loop = read_checkpoint(dir, pop);
     // The series as it was at the checkpoint: rows written after it are dropped.
     const auto old = measure::TimeSeries::read_csv_file(dir / "series.csv");
     if (old.size() < loop.rows)
@@ -386,7 +320,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       const bool pause_now = options.pause_at && pop.time() + 1e-12 >= *options.pause_at;
       if (pop.time() + 1e-12 >= loop.next_checkpoint || pause_now) {
         loop.next_checkpoint += numerics.checkpoint_interval;
-        save_checkpoint(dir, pop, loop);
+        write_checkpoint(dir, pop, loop);
       }
       if (pause_now) {
         paused = true;

@@ -104,9 +104,8 @@ void AxiShell::load_state(std::istream& in, fem::RigidBody& container, double mu
   }
   double time = 0.0;
   long steps = 0;
-  get(in, time);
-  get(in, steps);
-  get(in, rim_offset_);
+  get_clock(in, time, steps);
+  rim_offset_ = get_finite(in, "rim offset");
   const std::size_t n = body_.num_nodes();
   auto& x = dynamics_.mutable_positions();
   auto& v = dynamics_.mutable_velocities();

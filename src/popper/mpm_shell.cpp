@@ -189,8 +189,7 @@ void MpmShell::save_state(std::ostream& out) const {
 void MpmShell::load_state(std::istream& in, fem::RigidBody& container, double mu) {
   double time = 0.0;
   long steps = 0;
-  get(in, time);
-  get(in, steps);
+  get_clock(in, time, steps);
   auto particles = mpm::particles_of(*body_);
   const std::size_t n = particles.size();
   for (auto* v : {&particles.x.x, &particles.x.y, &particles.x.z, &particles.v.x, &particles.v.y,

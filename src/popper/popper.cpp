@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -265,31 +266,32 @@ void Popper::save_state(std::ostream& out) const {
 void Popper::load_state(std::istream& in) {
   char magic[sizeof kStateMagic] = {};
   in.read(magic, sizeof magic);
-  if (!in || std::string(magic) != kStateMagic)
-    throw std::runtime_error("not a snapjump checkpoint");
+  if (!in || std::memcmp(magic, kStateMagic, sizeof kStateMagic) != 0) {
+    throw std::runtime_error("not a snapjump checkpoint of this version");
+  }
   model_->load_state(in, container_, case_.friction.mu);
   grounded_ = true;
-  get(in, container_.z);
-  get(in, container_.vz);
-  get(in, container_.clamp_force);
+  container_.z = get_finite(in, "container height");
+  container_.vz = get_finite(in, "container velocity");
+  container_.clamp_force = get_finite(in, "clamp force");
   set_apparatus_inertia();
-  get(in, counterweight_.z);
-  get(in, counterweight_.vz);
-  double dp = 0, J_n = 0, J_n_rate = 0, V_ref = 0;
-  get(in, dp);
-  get(in, J_n);
-  get(in, J_n_rate);
-  get(in, V_ref);
+  counterweight_.z = get_finite(in, "counterweight height");
+  counterweight_.vz = get_finite(in, "counterweight velocity");
+  const double dp = get_finite(in, "pressure difference");
+  const double J_n = get_finite(in, "amount of air");
+  const double J_n_rate = get_finite(in, "rate of inflow");
+  const double V_ref = get_finite(in, "gas reference volume");
   if (!(std::abs(V_ref / gas_.V_ref() - 1.0) < 1e-12)) {
     throw std::runtime_error(fmt::format(
         "the checkpoint's gas reference volume {:.6g} m^3 is not this popper's {:.6g} m^3", V_ref,
         gas_.V_ref()));
   }
+  if (!(J_n > 0.0)) throw std::runtime_error("the checkpoint's amount of air is not positive");
   gas_.restore(dp, true, J_n, J_n_rate);
-  get(in, z_release_);
-  get(in, impulse_);
-  get(in, impulse_time_);
-  if (!in) throw std::runtime_error("the checkpoint is truncated");
+  z_release_ = get_finite(in, "release height");
+  impulse_ = get_finite(in, "plate impulse");
+  impulse_time_ = get_finite(in, "impulse time");
+  if (impulse_time_ < 0.0) throw std::runtime_error("the checkpoint's impulse time is negative");
 }
 
 void Popper::release() {

@@ -1,0 +1,160 @@
+#include "app/checkpoint.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "config/case.hpp"
+
+namespace snapjump::app {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr char kLoopMagic[] = "snapjump-run-loop-1";
+constexpr char kTrailerMagic[] = "snapjump-checksum-1";
+constexpr std::size_t kTrailer = sizeof kTrailerMagic + sizeof(std::uint64_t);
+// Bounds far above any run's, below anything that would exhaust memory.
+constexpr std::uint64_t kMaxFrames = 10'000'000, kMaxName = 4096;
+constexpr std::uintmax_t kMaxFile = std::uintmax_t{16} << 30;
+
+template <typename T>
+void put(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <typename T>
+T get(std::istream& in) {
+  T v{};
+  in.read(reinterpret_cast<char*>(&v), sizeof v);
+  return v;
+}
+
+}  // namespace
+
+std::uint64_t fnv1a64(std::string_view bytes) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
+
+std::string encode_checkpoint(const popper::Popper& pop, const LoopState& s) {
+  std::ostringstream f(std::ios::binary);
+  pop.save_state(f);
+  f.write(kLoopMagic, sizeof kLoopMagic);
+  for (double d : {s.next_sample, s.next_snapshot, s.next_checkpoint, s.airborne_since}) put(f, d);
+  put(f, s.rows);
+  put(f, static_cast<std::uint64_t>(s.frames.size()));
+  for (const auto& [t, name] : s.frames) {
+    put(f, t);
+    put(f, static_cast<std::uint64_t>(name.size()));
+    f.write(name.data(), static_cast<std::streamsize>(name.size()));
+  }
+  std::string bytes = std::move(f).str();
+  const std::uint64_t sum = fnv1a64(bytes);
+  bytes.append(kTrailerMagic, sizeof kTrailerMagic);
+  bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  return bytes;
+}
+
+LoopState decode_checkpoint(std::string_view bytes, popper::Popper& pop, std::string_view what) {
+  const auto fail = [&](const std::string& why) {
+    return CheckpointError(fmt::format("{}: {}", what, why));
+  };
+  std::string_view body = bytes;
+  if (bytes.size() >= kTrailer && std::memcmp(bytes.data() + bytes.size() - kTrailer, kTrailerMagic,
+                                              sizeof kTrailerMagic) == 0) {
+    body = bytes.substr(0, bytes.size() - kTrailer);
+    std::uint64_t sum = 0;
+    std::memcpy(&sum, bytes.data() + bytes.size() - sizeof sum, sizeof sum);
+    if (sum != fnv1a64(body)) {
+      throw fail("the checksum does not match its contents: the file is damaged");
+    }
+  }
+  std::istringstream f{std::string(body), std::ios::binary};
+  try {
+    pop.load_state(f);
+  } catch (const std::exception& e) {
+    throw fail(e.what());
+  }
+  char magic[sizeof kLoopMagic] = {};
+  f.read(magic, sizeof magic);
+  if (!f || std::memcmp(magic, kLoopMagic, sizeof kLoopMagic) != 0) {
+    throw fail("the release loop's state is missing or damaged");
+  }
+  LoopState s;
+  s.next_sample = get<double>(f);
+  s.next_snapshot = get<double>(f);
+  s.next_checkpoint = get<double>(f);
+  s.airborne_since = get<double>(f);
+  s.rows = get<std::uint64_t>(f);
+  const auto n = get<std::uint64_t>(f);
+  if (!f) throw fail("truncated in the release loop's state");
+  for (const double t : {s.next_sample, s.next_snapshot, s.next_checkpoint}) {
+    if (!std::isfinite(t) || t < 0.0) {
+      throw fail(fmt::format("a next sample, snapshot or checkpoint time of {} s", t));
+    }
+  }
+  if (!std::isfinite(s.airborne_since) || s.airborne_since < -1.0) {
+    throw fail(fmt::format("a flight start of {} s", s.airborne_since));
+  }
+  if (n > kMaxFrames) throw fail(fmt::format("{} snapshots listed", n));
+  const std::regex frame_name(R"(snapshots/frame_[0-9]{5,9}\.vtu)");
+  for (std::uint64_t k = 0; k < n; ++k) {
+    const auto t = get<double>(f);
+    const auto len = get<std::uint64_t>(f);
+    if (!f) throw fail("truncated in the list of snapshots");
+    if (len > kMaxName) throw fail(fmt::format("a snapshot name of {} bytes", len));
+    std::string name(len, '\0');
+    f.read(name.data(), static_cast<std::streamsize>(len));
+    if (!f) throw fail("truncated in the list of snapshots");
+    if (!std::isfinite(t) || t < 0.0) throw fail(fmt::format("a snapshot at t = {} s", t));
+    if (!std::regex_match(name, frame_name)) {
+      throw fail("a snapshot name that is not one of the run's own (snapshots/frame_NNNNN.vtu)");
+    }
+    s.frames.emplace_back(t, std::move(name));
+  }
+  f.peek();
+  if (!f.eof()) throw fail("bytes after the end of the state");
+  return s;
+}
+
+void write_checkpoint(const fs::path& dir, const popper::Popper& pop, const LoopState& loop) {
+  const auto bytes = encode_checkpoint(pop, loop);
+  const fs::path tmp = dir / "checkpoint.bin.tmp";
+  {
+    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    f.flush();
+    if (!f) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
+  }
+  fs::rename(tmp, dir / "checkpoint.bin");
+}
+
+LoopState read_checkpoint(const fs::path& dir, popper::Popper& pop) {
+  const fs::path path = dir / "checkpoint.bin";
+  std::error_code ec;
+  const auto size = fs::file_size(path, ec);
+  if (ec) {
+    throw config::CaseError(
+        fmt::format("--resume {}: no checkpoint.bin; the run stopped before its first checkpoint "
+                    "(run it again)",
+                    dir.string()));
+  }
+  if (size > kMaxFile) {
+    throw CheckpointError(
+        fmt::format("{}: {} bytes, more than a checkpoint can be", path.string(), size));
+  }
+  std::ifstream f(path, std::ios::binary);
+  std::string bytes(size, '\0');
+  f.read(bytes.data(), static_cast<std::streamsize>(size));
+  if (!f) throw CheckpointError(fmt::format("{}: cannot be read", path.string()));
+  return decode_checkpoint(bytes, pop, path.string());
+}
+
+}  // namespace snapjump::app

@@ -1,0 +1,119 @@
+// Checkpoints are checked before anything in them is used: a checksum over the bytes, then every
+// field of the release loop's state. The axisymmetric coarse popper keeps these tests cheap; the
+// format is the same for both models.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "app/checkpoint.hpp"
+
+namespace snapjump::app {
+namespace {
+
+config::Case axi_case() {
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = config::Resolution::Coarse;
+  return c;
+}
+
+// A released popper a few steps on, and a loop state with two snapshots.
+struct Fixture {
+  config::Case c = axi_case();
+  popper::Numerics n = popper::resolve_numerics(c);
+  popper::Popper pop{c, n};
+  LoopState loop;
+  Fixture() {
+    EXPECT_TRUE(pop.prepare().held);
+    pop.release();
+    for (int k = 0; k < 50; ++k) pop.step();
+    loop.next_sample = 2e-4;
+    loop.next_snapshot = 5e-3;
+    loop.next_checkpoint = 0.02;
+    loop.rows = 2;
+    loop.frames = {{0.0, "snapshots/frame_00000.vtu"}, {5e-3, "snapshots/frame_00001.vtu"}};
+  }
+};
+
+std::string error_of(const std::string& bytes) {
+  const auto c = axi_case();
+  popper::Popper fresh(c, popper::resolve_numerics(c));
+  try {
+    (void)decode_checkpoint(bytes, fresh, "checkpoint.bin");
+  } catch (const CheckpointError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Checkpoint, RoundTripRestoresThePopperAndTheLoop) {
+  Fixture f;
+  const auto bytes = encode_checkpoint(f.pop, f.loop);
+  popper::Popper back(f.c, f.n);
+  const auto loop = decode_checkpoint(bytes, back, "checkpoint.bin");
+  EXPECT_EQ(loop.frames, f.loop.frames);
+  EXPECT_EQ(loop.rows, 2u);
+  EXPECT_EQ(loop.next_sample, 2e-4);
+  EXPECT_EQ(encode_checkpoint(back, loop), bytes);
+  // Both step on identically.
+  for (int k = 0; k < 20; ++k) {
+    f.pop.step();
+    back.step();
+  }
+  EXPECT_EQ(encode_checkpoint(back, loop), encode_checkpoint(f.pop, f.loop));
+}
+
+TEST(Checkpoint, AnyDamagedByteIsFound) {
+  Fixture f;
+  const auto bytes = encode_checkpoint(f.pop, f.loop);
+  for (std::size_t at : {std::size_t{0}, std::size_t{30}, bytes.size() / 3, bytes.size() / 2,
+                         bytes.size() - 40, bytes.size() - 1}) {
+    auto damaged = bytes;
+    damaged[at] = static_cast<char>(damaged[at] ^ 0x10);
+    EXPECT_NE(error_of(damaged), "") << "byte " << at;
+  }
+  EXPECT_NE(error_of(bytes.substr(0, bytes.size() / 2)).find("checkpoint.bin"), std::string::npos);
+  EXPECT_NE(error_of("not a checkpoint at all"), "");
+  EXPECT_NE(error_of(""), "");
+}
+
+TEST(Checkpoint, FieldsAreCheckedEvenWithAValidChecksum) {
+  Fixture f;
+  const auto bad = [&](LoopState loop) { return error_of(encode_checkpoint(f.pop, loop)); };
+  auto loop = f.loop;
+  loop.next_sample = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_NE(bad(loop).find("next sample"), std::string::npos);
+  loop = f.loop;
+  loop.next_checkpoint = -1.0;
+  EXPECT_NE(bad(loop), "");
+  loop = f.loop;
+  loop.airborne_since = std::numeric_limits<double>::infinity();
+  EXPECT_NE(bad(loop).find("flight start"), std::string::npos);
+  loop = f.loop;
+  loop.frames.emplace_back(0.01, "../../../../etc/passwd");
+  EXPECT_NE(bad(loop).find("snapshot name"), std::string::npos);
+  loop = f.loop;
+  loop.frames.emplace_back(std::numeric_limits<double>::quiet_NaN(), "snapshots/frame_00002.vtu");
+  EXPECT_NE(bad(loop).find("snapshot at"), std::string::npos);
+}
+
+TEST(Checkpoint, WithoutTheTrailerItIsReadWithTheSameChecks) {
+  // The format before the checksum: the same bytes without the trailer.
+  Fixture f;
+  auto loop = f.loop;
+  loop.frames.clear();
+  const auto bytes = encode_checkpoint(f.pop, loop);
+  const std::size_t trailer = sizeof("snapjump-checksum-1") + 8;
+  auto old = bytes.substr(0, bytes.size() - trailer);
+  EXPECT_EQ(error_of(old), "");
+  // Its last field is the number of snapshots: a damaged count is refused, not allocated.
+  const std::uint64_t huge = std::uint64_t{1} << 62;
+  std::memcpy(old.data() + old.size() - 8, &huge, 8);
+  EXPECT_NE(error_of(old).find("snapshots listed"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace snapjump::app
