@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "config/case.hpp"
+#include "io/atomic_file.hpp"
 
 namespace snapjump::app {
 namespace fs = std::filesystem;
@@ -125,15 +126,7 @@ LoopState decode_checkpoint(std::string_view bytes, popper::Popper& pop, std::st
 }
 
 void write_checkpoint(const fs::path& dir, const popper::Popper& pop, const LoopState& loop) {
-  const auto bytes = encode_checkpoint(pop, loop);
-  const fs::path tmp = dir / "checkpoint.bin.tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    f.flush();
-    if (!f) throw std::runtime_error(fmt::format("cannot write {}", tmp.string()));
-  }
-  fs::rename(tmp, dir / "checkpoint.bin");
+  io::write_file_atomically(dir / "checkpoint.bin", encode_checkpoint(pop, loop), true);
 }
 
 LoopState read_checkpoint(const fs::path& dir, popper::Popper& pop) {

@@ -16,6 +16,7 @@
 #include "app/checkpoint.hpp"
 #include "app/cli.hpp"
 #include "config/units.hpp"
+#include "io/atomic_file.hpp"
 #include "io/prediction_report.hpp"
 #include "io/vtu.hpp"
 #include "measure/analysis.hpp"
@@ -59,13 +60,7 @@ fs::path make_output_folder(const config::Case& c, const std::string& requested)
 }
 
 void write_json_file(const fs::path& path, const nlohmann::json& doc) {
-  const auto tmp = path.string() + ".tmp";
-  {
-    std::ofstream f(tmp);
-    f << doc.dump(2) << '\n';
-    if (!f) throw std::runtime_error(fmt::format("cannot write {}", tmp));
-  }
-  fs::rename(tmp, path);
+  io::write_file_atomically(path, doc.dump(2) + "\n");
 }
 
 void print_numerics(std::ostream& out, const popper::Popper& pop) {
@@ -235,14 +230,23 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     const auto old = measure::TimeSeries::read_csv_file(dir / "series.csv");
     if (old.size() < loop.rows)
       throw std::runtime_error("series.csv is shorter than its checkpoint");
-    csv.emplace(dir / "series.csv", columns, true);
+    // The rows that belong to the checkpoint go to a new file, which then replaces the old one
+    // in one rename: a run killed at any moment keeps either series.csv as it was or the new
+    // one, never a series shorter than its checkpoint. The writer goes on appending to the
+    // renamed file.
+    const fs::path tmp_series = dir / "series.csv.tmp";
+    csv.emplace(tmp_series, columns, true);
     csv->write_comment(comment);
     std::vector<double> row(columns.size());
     for (std::size_t i = 0; i < loop.rows; ++i) {
       for (std::size_t k = 0; k < columns.size(); ++k) row[k] = old.column(columns[k])[i];
       series.add_row(row, old.contact()[i]);
       csv->write_row(row, old.contact()[i]);
+      if (options.fault_after_rewritten_rows && i + 1 == *options.fault_after_rewritten_rows) {
+        throw std::runtime_error("injected fault in the middle of the series' rewrite");
+      }
     }
+    fs::rename(tmp_series, dir / "series.csv");
     const auto frames = loop.frames;
     loop.frames.clear();
     for (const auto& [t, name] : frames) {

@@ -17,6 +17,9 @@ struct RunOptions {
   std::optional<double> pause_at;
   // Continue the run in this folder from its checkpoint (the case comes from its case.toml).
   std::string resume;
+  // For tests of crash safety: on resume, fail (throw) after rewriting this many rows of the
+  // series, as a run killed in the middle of the rewrite would stop.
+  std::optional<std::size_t> fault_after_rewritten_rows;
 };
 
 // Runs the protocol (buckle, set, ground, release) and writes series.csv, summary.json,

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "io/atomic_file.hpp"
+
 namespace snapjump::io {
 namespace {
 
@@ -118,19 +120,13 @@ void write_vtu(const std::filesystem::path& path, const axi::Body& body, const a
 
 void PvdCollection::add(double t, const std::string& file) {
   frames_.emplace_back(t, file);
-  const auto tmp = path_.string() + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw std::runtime_error(fmt::format("cannot write {}", tmp));
-    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n"
-           "  <Collection>\n";
-    for (const auto& [time, name] : frames_) {
-      fmt::print(out, "    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", time, name);
-    }
-    out << "  </Collection>\n</VTKFile>\n";
-    if (!out) throw std::runtime_error(fmt::format("writing {} failed", tmp));
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+  for (const auto& [time, name] : frames_) {
+    out += fmt::format("    <DataSet timestep=\"{:.9g}\" part=\"0\" file=\"{}\"/>\n", time, name);
   }
-  std::filesystem::rename(tmp, path_);
+  out += "  </Collection>\n</VTKFile>\n";
+  write_file_atomically(path_, out);
 }
 
 }  // namespace snapjump::io

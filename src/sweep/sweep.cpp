@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "io/atomic_file.hpp"
 #include "theory/prefactors.hpp"
 #include "theory/scaling.hpp"
 
@@ -405,13 +406,11 @@ void prepare_folder(const Spec& spec) {
   fs::create_directories(spec.output / "runs");
   fs::create_directories(spec.output / "logs");
   const auto write_atomic = [](const fs::path& p, const std::string& text) {
-    const fs::path tmp = fmt::format("{}.tmp", p.string());
-    {
-      std::ofstream f(tmp);
-      f << text;
-      if (!f) throw SweepError(fmt::format("cannot write {}", tmp.string()));
+    try {
+      io::write_file_atomically(p, text);
+    } catch (const std::runtime_error& e) {
+      throw SweepError(e.what());
     }
-    fs::rename(tmp, p);
   };
   const units::UnitParser parser;
   for (const auto& r : spec.runs) {
@@ -534,13 +533,11 @@ int write_table(const Spec& spec, const fs::path& csv) {
     }
     out += "\n";
   }
-  const fs::path tmp = fmt::format("{}.tmp", csv.string());
-  {
-    std::ofstream f(tmp);
-    f << out;
-    if (!f) throw SweepError(fmt::format("cannot write {}", tmp.string()));
+  try {
+    io::write_file_atomically(csv, out);
+  } catch (const std::runtime_error& e) {
+    throw SweepError(e.what());
   }
-  fs::rename(tmp, csv);
   return with_result;
 }
 

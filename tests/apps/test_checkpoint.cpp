@@ -5,10 +5,14 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <string>
 
 #include "app/checkpoint.hpp"
+#include "io/atomic_file.hpp"
 
 namespace snapjump::app {
 namespace {
@@ -113,6 +117,32 @@ TEST(Checkpoint, WithoutTheTrailerItIsReadWithTheSameChecks) {
   const std::uint64_t huge = std::uint64_t{1} << 62;
   std::memcpy(old.data() + old.size() - 8, &huge, 8);
   EXPECT_NE(error_of(old).find("snapshots listed"), std::string::npos);
+}
+
+TEST(AtomicFile, ReplacesWholeOrNotAtAll) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_atomic_file_test";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto path = dir / "summary.json";
+  const auto read = [&] {
+    std::ifstream f(path);
+    std::stringstream s;
+    s << f.rdbuf();
+    return s.str();
+  };
+  io::write_file_atomically(path, "first\n");
+  io::write_file_atomically(path, "second\n");
+  EXPECT_EQ(read(), "second\n");
+  EXPECT_FALSE(std::filesystem::exists(dir / "summary.json.tmp"));
+  // A file that cannot be written leaves the old one as it was and names itself.
+  std::filesystem::create_directories(dir / "blocked.json.tmp");
+  try {
+    io::write_file_atomically(dir / "blocked.json", "x");
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("blocked.json"), std::string::npos);
+  }
+  EXPECT_EQ(read(), "second\n");
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/cli.hpp"
+#include "app/run.hpp"
 
 namespace snapjump::app {
 namespace {
@@ -65,6 +66,30 @@ TEST(RunResume, AxisymmetricRunResumesExactly) {
   EXPECT_EQ(read(paused / "run.pvd"), read(straight / "run.pvd"));
   EXPECT_EQ(read(paused / "snapshots" / "frame_00010.vtu"),
             read(straight / "snapshots" / "frame_00010.vtu"));
+}
+
+TEST(RunResume, AResumeKilledWhileRewritingTheSeriesCanBeResumedAgain) {
+  // The resume rewrites series.csv up to its checkpoint; a run stopped in the middle of that
+  // rewrite (here by an injected fault) must leave a folder that resumes. It did not when the
+  // series was truncated in place.
+  const auto base = std::filesystem::temp_directory_path() / "snapjump_resume_fault_test";
+  std::filesystem::remove_all(base);
+  const auto straight = base / "straight", paused = base / "paused";
+  const std::vector<std::string> common = {"run",    "--model", "axisymmetric", "--resolution",
+                                           "coarse", "--quiet", "--end-time",   "60ms"};
+  auto a = common, b = common;
+  a.insert(a.end(), {"--output", straight.string()});
+  b.insert(b.end(), {"--pause-at", "45ms", "--output", paused.string()});
+  ASSERT_EQ(run(a), 0);
+  ASSERT_EQ(run(b), 0);
+  RunOptions faulty;
+  faulty.resume = paused.string();
+  faulty.quiet = true;
+  faulty.fault_after_rewritten_rows = 100;
+  std::ostringstream out, err;
+  EXPECT_THROW((void)run_simulation(config::Case{}, faulty, out, err), std::runtime_error);
+  ASSERT_EQ(run({"run", "--resume", paused.string(), "--quiet"}), 0);
+  EXPECT_EQ(read(paused / "series.csv"), read(straight / "series.csv"));
 }
 
 }  // namespace

@@ -1,0 +1,16 @@
+// Replacing a file so that a crash at any moment leaves either the old contents or the new ones:
+// the text goes to PATH.tmp in the same folder, which is then renamed over PATH (an atomic step
+// on POSIX file systems). Every file that a run or a sweep rewrites goes through here; the series
+// of a resumed run, written row by row, uses the same rename (app/run.cpp).
+#pragma once
+
+#include <filesystem>
+#include <string_view>
+
+namespace snapjump::io {
+
+// Throws std::runtime_error naming the file when it cannot be written or renamed.
+void write_file_atomically(const std::filesystem::path& path, std::string_view contents,
+                           bool binary = false);
+
+}  // namespace snapjump::io
