@@ -162,6 +162,22 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   return analysis;
 }
 
+// Marks the run in dir as failed in its summary.json, keeping what the summary already holds.
+// Never throws: it runs while another error is on its way out.
+void record_failure(const fs::path& dir, const std::string& what) {
+  try {
+    nlohmann::json summary = nlohmann::json::object();
+    if (std::ifstream f(dir / "summary.json"); f) {
+      auto before = nlohmann::json::parse(f, nullptr, false);
+      if (before.is_object()) summary = std::move(before);
+    }
+    summary["status"] = fmt::format("failed: {}", what);
+    write_json_file(dir / "summary.json", summary);
+  } catch (const std::exception&) {
+    // The error that stopped the run is reported by the caller.
+  }
+}
+
 }  // namespace
 
 int run_simulation(const config::Case& case_in, const RunOptions& options, std::ostream& out,
@@ -184,204 +200,211 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
              dir.string(), resuming ? " (resumed)" : "");
   nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", "running"}};
   if (!resuming) {
-    std::ofstream(dir / "case.toml") << config::to_toml(c);
+    io::write_file_atomically(dir / "case.toml", config::to_toml(c));
     write_json_file(dir / "summary.json", summary);
   }
 
-  const auto start = Clock::now();
-  const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  popper::Popper pop(c, numerics);
-  print_numerics(out, pop);
-  summary["numerics"] = pop.model().numerics_json();
-  summary["numerics"]["end_time"] = numerics.end_time;
-
-  double last_print = -1.0;
-  const auto columns = popper::sample_columns();
-  measure::TimeSeries series(columns, true);
-  LoopState loop;
-  std::optional<measure::CsvWriter> csv;
-  io::PvdCollection pvd(dir / "run.pvd");
-  const auto snapshot = [&]() {
-    const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd.size());
-    pop.model().write_snapshot(dir / name);
-    pvd.add(pop.time(), name);
-    loop.frames.emplace_back(pop.time(), name);
-  };
-  const auto record = [&]() {
-    const auto s = pop.sample();
-    const auto values = popper::sample_values(s);
-    series.add_row(values, s.contact);
-    csv->write_row(values, s.contact);
-    ++loop.rows;
-    return s;
-  };
-  const std::string comment =
-      "snapjump run (the case is in case.toml); SI units; t = 0 at the release";
-
-  if (resuming) {
-    if (std::ifstream prev(dir / "summary.json"); prev) {
-      const auto before = nlohmann::json::parse(prev, nullptr, false);
-      if (before.is_object() && before.contains("preparation")) {
-        summary["preparation"] = before["preparation"];
-      }
-    }
-    loop = read_checkpoint(dir, pop);
-    // The series as it was at the checkpoint: rows written after it are dropped.
-    const auto old = measure::TimeSeries::read_csv_file(dir / "series.csv");
-    if (old.size() < loop.rows)
-      throw std::runtime_error("series.csv is shorter than its checkpoint");
-    // The rows that belong to the checkpoint go to a new file, which then replaces the old one
-    // in one rename: a run killed at any moment keeps either series.csv as it was or the new
-    // one, never a series shorter than its checkpoint. The writer goes on appending to the
-    // renamed file.
-    const fs::path tmp_series = dir / "series.csv.tmp";
-    csv.emplace(tmp_series, columns, true);
-    csv->write_comment(comment);
-    std::vector<double> row(columns.size());
-    for (std::size_t i = 0; i < loop.rows; ++i) {
-      for (std::size_t k = 0; k < columns.size(); ++k) row[k] = old.column(columns[k])[i];
-      series.add_row(row, old.contact()[i]);
-      csv->write_row(row, old.contact()[i]);
-      if (options.fault_after_rewritten_rows && i + 1 == *options.fault_after_rewritten_rows) {
-        throw std::runtime_error("injected fault in the middle of the series' rewrite");
-      }
-    }
-    fs::rename(tmp_series, dir / "series.csv");
-    const auto frames = loop.frames;
-    loop.frames.clear();
-    for (const auto& [t, name] : frames) {
-      pvd.add(t, name);
-      loop.frames.emplace_back(t, name);
-    }
-    fmt::print(out, "  resumed     at t = {:.4f} s, step {}\n", pop.time(), pop.steps());
-  } else {
-    const auto progress = [&](const std::string& phase, double t, double fraction) {
-      if (options.quiet || wall() - last_print < 2.0) return;
-      last_print = wall();
-      fmt::print(err, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t,
-                 fraction >= 0 ? fmt::format(" ({:.0f} %)", 100 * fraction) : std::string());
-    };
-    const auto prep = pop.prepare(progress);
-    fmt::print(out, "  prepared    {}\n", prep.message);
-    summary["preparation"] = {{"inverted", prep.inverted},
-                              {"held", prep.held},
-                              {"buckling_pressure", prep.buckling_pressure},
-                              {"delta_p_j", pop.delta_p_j()},
-                              {"plate_force", prep.plate_force},
-                              {"message", prep.message}};
-    if (!prep.held) {
-      summary["status"] = prep.inverted ? "snapped back before release" : "did not invert";
-      write_json_file(dir / "summary.json", summary);
-      fmt::print(out, "  result      {}\n", summary["status"].get<std::string>());
-      return kExitOk;
-    }
-    write_json_file(dir / "summary.json", summary);
-    pop.release();
-    csv.emplace(dir / "series.csv", columns, true);
-    csv->write_comment(comment);
-    fs::create_directories(dir / "snapshots");
-    record();
-    snapshot();
-    loop.next_sample = numerics.probe_interval;
-    loop.next_snapshot = numerics.snapshot_interval;
-    loop.next_checkpoint = numerics.checkpoint_interval;
-  }
-
-  std::string status = "completed";
-  const double run_start = wall();
-  const long start_steps = pop.steps();
-  bool paused = false;
-  // Whether the apex has come down (the snap's onset) in the series so far.
-  bool snapped = false;
-  for (double w : series.column("w")) {
-    if (w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) snapped = true;
-  }
   try {
-    while (pop.time() < numerics.end_time) {
-      pop.step();
-      if (pop.time() + 1e-12 >= loop.next_sample) {
-        loop.next_sample += numerics.probe_interval;
-        const auto s = record();
-        // Stop at the apex of the flight: off the plate for 5 ms and coming down. The flight
-        // starts only when the container leaves the plate going up: a shell pulled back off the
-        // plate by the suction while the popper settles is not a flight, nor a hop of the
-        // popper on its ring before the apex has come down (w / R < 0.03: the snap).
-        if (s.w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) snapped = true;
-        if (snapped && s.contact == measure::ContactState::None && s.F == 0.0) {
-          if (loop.airborne_since < 0 && s.vz > 0.0) loop.airborne_since = s.t;
-        } else {
-          loop.airborne_since = -1.0;
+    const auto start = Clock::now();
+    const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+    popper::Popper pop(c, numerics);
+    print_numerics(out, pop);
+    summary["numerics"] = pop.model().numerics_json();
+    summary["numerics"]["end_time"] = numerics.end_time;
+
+    double last_print = -1.0;
+    const auto columns = popper::sample_columns();
+    measure::TimeSeries series(columns, true);
+    LoopState loop;
+    std::optional<measure::CsvWriter> csv;
+    io::PvdCollection pvd(dir / "run.pvd");
+    const auto snapshot = [&]() {
+      const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd.size());
+      pop.model().write_snapshot(dir / name);
+      pvd.add(pop.time(), name);
+      loop.frames.emplace_back(pop.time(), name);
+    };
+    const auto record = [&]() {
+      const auto s = pop.sample();
+      const auto values = popper::sample_values(s);
+      series.add_row(values, s.contact);
+      csv->write_row(values, s.contact);
+      ++loop.rows;
+      return s;
+    };
+    const std::string comment =
+        "snapjump run (the case is in case.toml); SI units; t = 0 at the release";
+
+    if (resuming) {
+      if (std::ifstream prev(dir / "summary.json"); prev) {
+        const auto before = nlohmann::json::parse(prev, nullptr, false);
+        if (before.is_object() && before.contains("preparation")) {
+          summary["preparation"] = before["preparation"];
         }
-        if (loop.airborne_since >= 0 && s.t - loop.airborne_since > 5e-3 && s.vz < 0.0) {
-          status = "completed (apex of the flight)";
+      }
+      loop = read_checkpoint(dir, pop);
+      // The series as it was at the checkpoint: rows written after it are dropped.
+      const auto old = measure::TimeSeries::read_csv_file(dir / "series.csv");
+      if (old.size() < loop.rows)
+        throw std::runtime_error("series.csv is shorter than its checkpoint");
+      // The rows that belong to the checkpoint go to a new file, which then replaces the old one
+      // in one rename: a run killed at any moment keeps either series.csv as it was or the new
+      // one, never a series shorter than its checkpoint. The writer goes on appending to the
+      // renamed file.
+      const fs::path tmp_series = dir / "series.csv.tmp";
+      csv.emplace(tmp_series, columns, true);
+      csv->write_comment(comment);
+      std::vector<double> row(columns.size());
+      for (std::size_t i = 0; i < loop.rows; ++i) {
+        for (std::size_t k = 0; k < columns.size(); ++k) row[k] = old.column(columns[k])[i];
+        series.add_row(row, old.contact()[i]);
+        csv->write_row(row, old.contact()[i]);
+        if (options.fault_after_rewritten_rows && i + 1 == *options.fault_after_rewritten_rows) {
+          throw std::runtime_error("injected fault in the middle of the series' rewrite");
+        }
+      }
+      fs::rename(tmp_series, dir / "series.csv");
+      const auto frames = loop.frames;
+      loop.frames.clear();
+      for (const auto& [t, name] : frames) {
+        pvd.add(t, name);
+        loop.frames.emplace_back(t, name);
+      }
+      fmt::print(out, "  resumed     at t = {:.4f} s, step {}\n", pop.time(), pop.steps());
+    } else {
+      const auto progress = [&](const std::string& phase, double t, double fraction) {
+        if (options.quiet || wall() - last_print < 2.0) return;
+        last_print = wall();
+        fmt::print(err, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t,
+                   fraction >= 0 ? fmt::format(" ({:.0f} %)", 100 * fraction) : std::string());
+      };
+      const auto prep = pop.prepare(progress);
+      fmt::print(out, "  prepared    {}\n", prep.message);
+      summary["preparation"] = {{"inverted", prep.inverted},
+                                {"held", prep.held},
+                                {"buckling_pressure", prep.buckling_pressure},
+                                {"delta_p_j", pop.delta_p_j()},
+                                {"plate_force", prep.plate_force},
+                                {"message", prep.message}};
+      if (!prep.held) {
+        summary["status"] = prep.inverted ? "snapped back before release" : "did not invert";
+        write_json_file(dir / "summary.json", summary);
+        fmt::print(out, "  result      {}\n", summary["status"].get<std::string>());
+        return kExitOk;
+      }
+      write_json_file(dir / "summary.json", summary);
+      pop.release();
+      csv.emplace(dir / "series.csv", columns, true);
+      csv->write_comment(comment);
+      fs::create_directories(dir / "snapshots");
+      record();
+      snapshot();
+      loop.next_sample = numerics.probe_interval;
+      loop.next_snapshot = numerics.snapshot_interval;
+      loop.next_checkpoint = numerics.checkpoint_interval;
+    }
+
+    std::string status = "completed";
+    const double run_start = wall();
+    const long start_steps = pop.steps();
+    bool paused = false;
+    // Whether the apex has come down (the snap's onset) in the series so far.
+    bool snapped = false;
+    for (double w : series.column("w")) {
+      if (w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) snapped = true;
+    }
+    try {
+      while (pop.time() < numerics.end_time) {
+        pop.step();
+        if (pop.time() + 1e-12 >= loop.next_sample) {
+          loop.next_sample += numerics.probe_interval;
+          const auto s = record();
+          // Stop at the apex of the flight: off the plate for 5 ms and coming down. The flight
+          // starts only when the container leaves the plate going up: a shell pulled back off the
+          // plate by the suction while the popper settles is not a flight, nor a hop of the
+          // popper on its ring before the apex has come down (w / R < 0.03: the snap).
+          if (s.w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) snapped = true;
+          if (snapped && s.contact == measure::ContactState::None && s.F == 0.0) {
+            if (loop.airborne_since < 0 && s.vz > 0.0) loop.airborne_since = s.t;
+          } else {
+            loop.airborne_since = -1.0;
+          }
+          if (loop.airborne_since >= 0 && s.t - loop.airborne_since > 5e-3 && s.vz < 0.0) {
+            status = "completed (apex of the flight)";
+            break;
+          }
+        }
+        if (pop.time() + 1e-12 >= loop.next_snapshot) {
+          loop.next_snapshot += numerics.snapshot_interval;
+          snapshot();
+        }
+        const bool pause_now = options.pause_at && pop.time() + 1e-12 >= *options.pause_at;
+        if (pop.time() + 1e-12 >= loop.next_checkpoint || pause_now) {
+          loop.next_checkpoint += numerics.checkpoint_interval;
+          write_checkpoint(dir, pop, loop);
+        }
+        if (pause_now) {
+          paused = true;
           break;
         }
+        if (!options.quiet && wall() - last_print >= 5.0) {
+          last_print = wall();
+          const double rate = (pop.steps() - start_steps) / std::max(1e-9, wall() - run_start);
+          const double eta = (numerics.end_time - pop.time()) / pop.dt() / std::max(rate, 1e-9);
+          fmt::print(err,
+                     "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
+                     "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
+                     wall(), pop.time(), rate, eta, pop.gas().delta_p(), 1e3 * pop.container().z);
+        }
       }
-      if (pop.time() + 1e-12 >= loop.next_snapshot) {
-        loop.next_snapshot += numerics.snapshot_interval;
-        snapshot();
-      }
-      const bool pause_now = options.pause_at && pop.time() + 1e-12 >= *options.pause_at;
-      if (pop.time() + 1e-12 >= loop.next_checkpoint || pause_now) {
-        loop.next_checkpoint += numerics.checkpoint_interval;
-        write_checkpoint(dir, pop, loop);
-      }
-      if (pause_now) {
-        paused = true;
-        break;
-      }
-      if (!options.quiet && wall() - last_print >= 5.0) {
-        last_print = wall();
-        const double rate = (pop.steps() - start_steps) / std::max(1e-9, wall() - run_start);
-        const double eta = (numerics.end_time - pop.time()) / pop.dt() / std::max(rate, 1e-9);
-        fmt::print(err,
-                   "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
-                   "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
-                   wall(), pop.time(), rate, eta, pop.gas().delta_p(), 1e3 * pop.container().z);
-      }
+    } catch (const std::exception& e) {
+      status = fmt::format("failed: {}", e.what());
+      fmt::print(err, "error: {}\n  what was written so far stays in {}\n", e.what(), dir.string());
     }
-  } catch (const std::exception& e) {
-    status = fmt::format("failed: {}", e.what());
-    fmt::print(err, "error: {}\n  what was written so far stays in {}\n", e.what(), dir.string());
-  }
-  if (paused) {
-    summary["status"] = fmt::format(
-        "paused at t = {:.6g} s; continue with snapjump run --resume {}", pop.time(), dir.string());
-    write_json_file(dir / "summary.json", summary);
-    fmt::print(out, "  status      {}\n", summary["status"].get<std::string>());
-    return kExitOk;
-  }
-  snapshot();
+    if (paused) {
+      summary["status"] =
+          fmt::format("paused at t = {:.6g} s; continue with snapjump run --resume {}", pop.time(),
+                      dir.string());
+      write_json_file(dir / "summary.json", summary);
+      fmt::print(out, "  status      {}\n", summary["status"].get<std::string>());
+      return kExitOk;
+    }
+    snapshot();
 
-  summary["status"] = status;
-  summary["wall_time"] = wall();
-  summary["steps"] = pop.steps();
-  const auto analysis = write_results(dir, summary, c, series, status, out);
-  fmt::print(out, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
-             dir.string(), pvd.size());
-  // The figures a reader looks at first: the Fig. 2(a) panels and cross-sections of the shell
-  // before, at and after the transition. A missing gnuplot costs the figures, not the run.
-  try {
-    const auto series_fig = plot::plot_series(dir, {});
-    std::vector<double> times = {0.0};
-    const double last = pop.time();
-    if (analysis.t_onset) {
-      for (double t : {*analysis.t_onset - 0.1, *analysis.t_onset - 0.02, *analysis.t_onset}) {
-        if (t > times.back() + 1e-3) times.push_back(t);
+    summary["status"] = status;
+    summary["wall_time"] = wall();
+    summary["steps"] = pop.steps();
+    const auto analysis = write_results(dir, summary, c, series, status, out);
+    fmt::print(out, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
+               dir.string(), pvd.size());
+    // The figures a reader looks at first: the Fig. 2(a) panels and cross-sections of the shell
+    // before, at and after the transition. A missing gnuplot costs the figures, not the run.
+    try {
+      const auto series_fig = plot::plot_series(dir, {});
+      std::vector<double> times = {0.0};
+      const double last = pop.time();
+      if (analysis.t_onset) {
+        for (double t : {*analysis.t_onset - 0.1, *analysis.t_onset - 0.02, *analysis.t_onset}) {
+          if (t > times.back() + 1e-3) times.push_back(t);
+        }
+        if (analysis.t_launch && *analysis.t_launch > times.back() + 1e-3)
+          times.push_back(*analysis.t_launch);
+      } else {
+        for (double f : {0.25, 0.5, 0.75}) times.push_back(f * last);
       }
-      if (analysis.t_launch && *analysis.t_launch > times.back() + 1e-3)
-        times.push_back(*analysis.t_launch);
-    } else {
-      for (double f : {0.25, 0.5, 0.75}) times.push_back(f * last);
+      if (last > times.back() + 1e-3) times.push_back(last);
+      const auto sections_fig = plot::plot_sections(dir, times, {});
+      fmt::print(out, "  figures     {}, {}\n", series_fig.figure.string(),
+                 sections_fig.figure.string());
+    } catch (const std::exception& e) {
+      fmt::print(out, "  note        no figures: {}\n", e.what());
     }
-    if (last > times.back() + 1e-3) times.push_back(last);
-    const auto sections_fig = plot::plot_sections(dir, times, {});
-    fmt::print(out, "  figures     {}, {}\n", series_fig.figure.string(),
-               sections_fig.figure.string());
+    return status.rfind("failed", 0) == 0 ? kExitFailure : kExitOk;
   } catch (const std::exception& e) {
-    fmt::print(out, "  note        no figures: {}\n", e.what());
+    // Whatever stopped the run, its summary says so (a sweep reads "running" as alive).
+    record_failure(dir, e.what());
+    throw;
   }
-  return status.rfind("failed", 0) == 0 ? kExitFailure : kExitOk;
 }
 
 int reanalyze_run(const std::filesystem::path& dir, std::ostream& out) {

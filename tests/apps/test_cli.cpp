@@ -212,6 +212,21 @@ TEST(Cli, RunNeverOverwritesAnOutputFolder) {
   EXPECT_EQ(line, "t,F");
 }
 
+TEST(Cli, ARunThatFailsAfterItsFolderIsMadeSaysSoInItsSummary) {
+  // A popper lighter than its own shell is found only when the shell is built, after the folder
+  // and its summary exist: the summary must not stay at "running".
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_failed_run";
+  std::filesystem::remove_all(dir);
+  const auto r = run({"run", "--model", "axisymmetric", "--net-weight", "0.05N", "--popper-mass",
+                      "10g", "--output", dir.string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  std::ifstream in(dir / "summary.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("\"status\": \"failed: popper.mass"), std::string::npos) << text.str();
+  EXPECT_NE(text.str().find("\"case\""), std::string::npos);  // what it held is kept
+}
+
 TEST(Cli, RunRefusesAnIncompressibleMaterialBeforeWritingAnything) {
   const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_nu_half";
   std::filesystem::remove_all(dir);
