@@ -4,6 +4,7 @@
 #include <fmt/ostream.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -64,6 +65,17 @@ struct CaseOptions {
 int predict(const CaseOptions& opts, const std::string& format, std::ostream& out) {
   const auto c = opts.load();
   const auto p = theory::predict(c, theory::contact_constants());
+  // A valid case can still lie where the closed forms overflow or vanish (h/R of 1e-309):
+  // say which quantity, rather than print inf or nan.
+  for (const auto& row : io::prediction_rows(p)) {
+    if (!std::isfinite(row.lo) || !std::isfinite(row.hi)) {
+      throw config::CaseError(fmt::format(
+          "the case gives a non-finite {} ({} .. {}): h/R = {:.3g} and E h^2 / mg = {:.3g} lie "
+          "outside what the closed forms can evaluate",
+          row.key, row.lo, row.hi, c.shell.h / c.shell.R,
+          c.material.E * c.shell.h * c.shell.h / c.popper.net_weight));
+    }
+  }
   if (format == "json") {
     io::write_json(out, c, p);
   } else if (format == "csv") {

@@ -250,7 +250,8 @@ void Stepper::grid_to_particle() {
   if (cfl() > options_.max_cfl) {
     throw StepError(fmt::format(
         "t = {:.6g} s, step {}: a particle moves {:.3g} grid cells per step (speed {:.3g} m/s), "
-        "more than the allowed {}; reduce the time step",
+        "more than the allowed {}: the popper's time step assumes speeds up to 2 m/s "
+        "(docs/popper.md); a larger numerics.grid_spacing allows faster ones",
         t, steps_ + 1, cfl(), max_speed_, options_.max_cfl));
   }
 }

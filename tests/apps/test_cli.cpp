@@ -90,6 +90,14 @@ TEST(Cli, BadFlagValueNamesTheFlag) {
   EXPECT_NE(r.err.find("is a mass, but a length is needed"), std::string::npos) << r.err;
 }
 
+TEST(Cli, PredictRefusesACaseItCannotEvaluate) {
+  // h = 1e-310 m is positive and smaller than R, but t_c overflows: an error, not "inf".
+  const auto r = run({"predict", "--h", "1e-310m"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("non-finite"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
+}
+
 TEST(Cli, UnphysicalFlagIsRejected) {
   const auto r = run({"predict", "--h", "40mm"});
   EXPECT_EQ(r.code, kExitBadInput);
