@@ -196,8 +196,17 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   popper::check_simulable(c);
   const auto numerics = popper::resolve_numerics(c);
   if (!resuming) dir = make_output_folder(c, options.output);
+  // The folder as given, and where it really is when links or ".." lead elsewhere.
+  std::string where = dir.string();
+  {
+    std::error_code ec;
+    const auto real = fs::canonical(dir, ec);
+    if (!ec && real != fs::absolute(dir).lexically_normal()) {
+      where += fmt::format(" (that is {})", real.string());
+    }
+  }
   fmt::print(out, "snapjump run: {}\n  output      {}{}\n", c.title.empty() ? c.source : c.title,
-             dir.string(), resuming ? " (resumed)" : "");
+             where, resuming ? " (resumed)" : "");
   nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", "running"}};
   if (!resuming) {
     io::write_file_atomically(dir / "case.toml", config::to_toml(c));
@@ -272,11 +281,23 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       }
       fmt::print(out, "  resumed     at t = {:.4f} s, step {}\n", pop.time(), pop.steps());
     } else {
+      // Each phase with its share done and, from its pace so far, at most how long it has to go
+      // (the buckling and the grounding may end early).
+      std::string current_phase;
+      double phase_start = 0.0;
       const auto progress = [&](const std::string& phase, double t, double fraction) {
+        if (phase != current_phase) {
+          current_phase = phase;
+          phase_start = wall();
+        }
         if (options.quiet || wall() - last_print < 2.0) return;
         last_print = wall();
-        fmt::print(err, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t,
-                   fraction >= 0 ? fmt::format(" ({:.0f} %)", 100 * fraction) : std::string());
+        std::string share;
+        if (fraction > 0.0) {
+          share = fmt::format(" ({:.0f} %, at most {:.0f} s to go)", 100 * fraction,
+                              (wall() - phase_start) * (1.0 - fraction) / fraction);
+        }
+        fmt::print(err, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t, share);
       };
       const auto prep = pop.prepare(progress);
       fmt::print(out, "  prepared    {}\n", prep.message);

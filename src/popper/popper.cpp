@@ -168,7 +168,8 @@ Preparation Popper::prepare(const Progress& progress) {
     gas_.hold(p_buckle * std::min(1.0, m.time() / ramp));
     m.step();
     if (m.steps() % 200 == 0) {
-      if (progress) progress("buckle", m.time(), -1.0);
+      // At most ramp + max_wait: the fraction is of that bound.
+      if (progress) progress("buckle", m.time(), m.time() / (ramp + max_wait));
       if (prep.buckling_pressure == 0.0 && m.cavity_volume() < 0.5 * cavity0) {
         prep.buckling_pressure = gas_.delta_p();
       }

@@ -71,7 +71,7 @@ struct Preparation {
 };
 
 // Progress callback: phase name, simulated time in the phase, fraction done (0..1, or < 0 when
-// unknown).
+// unknown; for a phase that may end early, the fraction of its longest duration).
 using Progress = std::function<void(const std::string& phase, double t, double fraction)>;
 
 class Popper {

@@ -235,6 +235,21 @@ TEST(Cli, ARunThatFailsAfterItsFolderIsMadeSaysSoInItsSummary) {
   EXPECT_NE(text.str().find("\"case\""), std::string::npos);  // what it held is kept
 }
 
+TEST(Cli, RunSaysWhereALinkedOutputFolderReallyIs) {
+  const auto base = std::filesystem::temp_directory_path() / "snapjump_cli_linked_output";
+  std::filesystem::remove_all(base);
+  std::filesystem::create_directories(base / "real");
+  std::filesystem::create_directory_symlink(base / "real", base / "link");
+  const auto r = run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--end-time",
+                      "1ms", "--quiet", "--output", (base / "link" / "x").string()});
+  EXPECT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(
+      r.out.find("(that is " + (std::filesystem::canonical(base / "real") / "x").string() + ")"),
+      std::string::npos)
+      << r.out;
+  EXPECT_TRUE(std::filesystem::exists(base / "real" / "x" / "summary.json"));
+}
+
 TEST(Cli, RunRefusesAnIncompressibleMaterialBeforeWritingAnything) {
   const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_nu_half";
   std::filesystem::remove_all(dir);
