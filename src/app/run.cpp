@@ -3,10 +3,14 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 #include <fmt/ranges.h>
+#include <sys/prctl.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -17,6 +21,7 @@
 #include "app/cli.hpp"
 #include "config/units.hpp"
 #include "io/atomic_file.hpp"
+#include "io/folder_lock.hpp"
 #include "io/prediction_report.hpp"
 #include "io/vtu.hpp"
 #include "measure/analysis.hpp"
@@ -182,6 +187,14 @@ void record_failure(const fs::path& dir, const std::string& what) {
 
 int run_simulation(const config::Case& case_in, const RunOptions& options, std::ostream& out,
                    std::ostream& err) {
+  // A run started by a sweep ends with it (a sweep killed with -9 must not leave runs going on
+  // that its restart would start a second time).
+  if (const char* parent = std::getenv("SNAPJUMP_SWEEP_PARENT")) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (std::to_string(::getppid()) != parent) {
+      throw std::runtime_error("the sweep that started this run has ended");
+    }
+  }
   const bool resuming = !options.resume.empty();
   fs::path dir;
   config::Case c = case_in;
@@ -196,6 +209,8 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   popper::check_simulable(c);
   const auto numerics = popper::resolve_numerics(c);
   if (!resuming) dir = make_output_folder(c, options.output);
+  // One process per run folder: a second resume of the same run is refused.
+  const io::FolderLock lock(dir, "run.lock", "the run folder");
   // The folder as given, and where it really is when links or ".." lead elsewhere.
   std::string where = dir.string();
   {

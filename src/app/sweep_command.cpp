@@ -5,9 +5,11 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <optional>
 #include <thread>
 
 #include "app/cli.hpp"
+#include "io/folder_lock.hpp"
 #include "sweep/executor.hpp"
 #include "sweep/mpi_work.hpp"
 #include "sweep/sweep.hpp"
@@ -84,9 +86,14 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
     sweep::MpiWork mpi;
     const bool root = mpi.rank() == 0;
     bool ok = true;
+    std::optional<io::FolderLock> lock;
     if (root) {
       try {
-        if (!table_only_) sweep::prepare_folder(spec);
+        if (!table_only_) {
+          fs::create_directories(spec.output);
+          lock.emplace(spec.output, "sweep.lock", "the sweep folder");
+          sweep::prepare_folder(spec);
+        }
       } catch (const std::exception& e) {
         fmt::print(err, "error: {}\n", e.what());
         ok = false;
@@ -131,6 +138,9 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
 
   try {
     if (!table_only_) {
+      // One sweep per folder: a second one on the same folder is refused.
+      fs::create_directories(spec.output);
+      const io::FolderLock lock(spec.output, "sweep.lock", "the sweep folder");
       sweep::prepare_folder(spec);
       const auto todo = sweep::runs_to_do(spec, retry_failed_);
       const int cores = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));

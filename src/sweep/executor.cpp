@@ -39,9 +39,15 @@ std::string tail_of(const fs::path& log, std::size_t lines) {
 pid_t spawn_run(const ExecOptions& o, const std::vector<std::string>& args, const fs::path& log) {
   std::vector<std::string> env_text;
   for (char** e = environ; *e != nullptr; ++e) {
-    if (std::strncmp(*e, "OMP_NUM_THREADS=", 16) != 0) env_text.emplace_back(*e);
+    if (std::strncmp(*e, "OMP_NUM_THREADS=", 16) != 0 &&
+        std::strncmp(*e, "SNAPJUMP_SWEEP_PARENT=", 22) != 0) {
+      env_text.emplace_back(*e);
+    }
   }
   env_text.push_back(fmt::format("OMP_NUM_THREADS={}", o.threads));
+  // The child ties its life to this process (app/run.cpp): a sweep killed with -9 leaves no
+  // runs going on that a restarted sweep would start a second time.
+  env_text.push_back(fmt::format("SNAPJUMP_SWEEP_PARENT={}", ::getpid()));
   std::vector<char*> envp;
   for (auto& s : env_text) envp.push_back(s.data());
   envp.push_back(nullptr);
@@ -114,6 +120,11 @@ ExecReport execute(const Spec& spec, const std::vector<std::size_t>& todo, const
     const auto p = paths_of(spec, run);
     auto state = state_of(p);
     std::vector<std::string> args;
+    if (state == RunState::Failed && resumes_after_kill(p)) {
+      // Killed from outside after a checkpoint: go on from it.
+      fs::remove(p.failed);
+      state = RunState::Resumable;
+    }
     if (state == RunState::Failed || state == RunState::Interrupted) {
       // Start again from nothing: the run's folder is the sweep's own.
       fs::remove_all(p.dir);

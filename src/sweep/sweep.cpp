@@ -381,6 +381,22 @@ RunState state_of(const RunPaths& p) {
   return fs::exists(p.dir / "checkpoint.bin") ? RunState::Resumable : RunState::Interrupted;
 }
 
+// An empty folder, or one that holds only the sweep's lock file (taken before the folder is
+// prepared).
+static bool only_the_lock(const fs::path& dir) {
+  for (const auto& e : fs::directory_iterator(dir)) {
+    if (e.path().filename() != "sweep.lock") return false;
+  }
+  return true;
+}
+
+bool resumes_after_kill(const RunPaths& p) {
+  if (!fs::exists(p.dir / "checkpoint.bin")) return false;
+  const auto summary = read_json(p.dir / "summary.json");
+  if (!summary) return false;
+  return summary->value("status", std::string()).rfind("failed", 0) != 0;
+}
+
 void prepare_folder(const Spec& spec) {
   std::string plan = "run";
   for (const auto& k : spec.varied_keys) plan += fmt::format(",{}", k);
@@ -398,7 +414,7 @@ void prepare_folder(const Spec& spec) {
           "remove that one",
           spec.output.string()));
     }
-  } else if (fs::exists(spec.output) && !fs::is_empty(spec.output)) {
+  } else if (fs::exists(spec.output) && !only_the_lock(spec.output)) {
     throw SweepError(
         fmt::format("{} exists and is not a sweep folder (no plan.csv)", spec.output.string()));
   }

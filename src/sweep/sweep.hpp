@@ -85,6 +85,10 @@ enum class RunState {
 };
 std::string_view to_string(RunState s);
 RunState state_of(const RunPaths& p);
+// A failed run that did not record a failure itself (its summary is not "failed: ...": it was
+// killed from outside, as the OOM killer does) and has a checkpoint: a retry resumes it from
+// there instead of starting it again.
+bool resumes_after_kill(const RunPaths& p);
 
 // Prepares the sweep folder: plan.csv (refusing a folder that holds a different sweep) and
 // one case file per run. Safe to call again on the same sweep.

@@ -10,6 +10,7 @@
 
 #include "app/cli.hpp"
 #include "config/case.hpp"
+#include "io/folder_lock.hpp"
 #include "support/cli_runner.hpp"
 
 namespace snapjump::app {
@@ -248,6 +249,33 @@ TEST(Cli, RunSaysWhereALinkedOutputFolderReallyIs) {
       std::string::npos)
       << r.out;
   EXPECT_TRUE(std::filesystem::exists(base / "real" / "x" / "summary.json"));
+}
+
+TEST(Cli, TwoProcessesNeverShareARunOrASweepFolder) {
+  const auto base = std::filesystem::temp_directory_path() / "snapjump_cli_locks";
+  std::filesystem::remove_all(base);
+  // A run folder in use (a resume going on) cannot be resumed a second time.
+  const auto run_dir = base / "run";
+  std::filesystem::create_directories(run_dir);
+  std::ofstream(run_dir / "case.toml") << config::to_toml(config::default_case());
+  {
+    const io::FolderLock held(run_dir, "run.lock", "the run folder");
+    const auto r = run({"run", "--resume", run_dir.string()});
+    EXPECT_NE(r.code, kExitOk);
+    EXPECT_NE(r.err.find("in use by another process"), std::string::npos) << r.err;
+  }
+  // A sweep folder in use by another sweep: refused before anything is written or started.
+  const auto sweep_dir = base / "sweep";
+  std::filesystem::create_directories(sweep_dir);
+  const auto file = base / "s.toml";
+  std::ofstream(file) << "output = \"sweep\"\n[vary]\nfriction.mu = [0.1, 0.2]\n";
+  {
+    const io::FolderLock held(sweep_dir, "sweep.lock", "the sweep folder");
+    const auto r = run({"sweep", file.string()});
+    EXPECT_NE(r.code, kExitOk);
+    EXPECT_NE(r.err.find("in use by another process (pid"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(sweep_dir / "plan.csv"));
+  }
 }
 
 TEST(Cli, RunRefusesAnIncompressibleMaterialBeforeWritingAnything) {

@@ -121,6 +121,24 @@ numerics.model = ["3d", "axisymmetric"]
   EXPECT_EQ(again.numerics.model, config::Model::Axisymmetric);
 }
 
+TEST(SweepFolder, ARunKilledFromOutsideResumesFromItsCheckpoint) {
+  const auto dir = fs::temp_directory_path() / "snapjump_sweep_killed_run";
+  fs::remove_all(dir);
+  const RunPaths p{dir / "cases" / "run-0000.toml", dir / "runs" / "run-0000",
+                   dir / "logs" / "run-0000.log", dir / "logs" / "run-0000.failed"};
+  fs::create_directories(p.dir);
+  fs::create_directories(dir / "logs");
+  std::ofstream(p.failed) << "killed by signal 9 (Killed)\n";
+  std::ofstream(p.dir / "summary.json") << R"({"status": "running"})";
+  EXPECT_FALSE(resumes_after_kill(p));  // no checkpoint yet: starts again
+  std::ofstream(p.dir / "checkpoint.bin") << "x";
+  EXPECT_EQ(state_of(p), RunState::Failed);
+  EXPECT_TRUE(resumes_after_kill(p));
+  // A run that recorded its own failure is not resumed: it would fail again.
+  std::ofstream(p.dir / "summary.json") << R"({"status": "failed: element 3 is inverted"})";
+  EXPECT_FALSE(resumes_after_kill(p));
+}
+
 TEST(SweepSpec, ABaseCaseFileIsReadRelativeToTheSweepFile) {
   const auto dir = scratch("base");
   write(dir / "cases" / "thick.toml", R"(
