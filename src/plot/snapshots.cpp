@@ -104,10 +104,15 @@ std::vector<std::array<double, 3>> read_vtu_points(const fs::path& path) {
   const auto piece = text.find("<Piece");
   if (piece == std::string::npos) throw fail("no <Piece>");
   const auto piece_end = text.find('>', piece);
+  if (piece_end == std::string::npos) throw fail("an unterminated <Piece>");
   const auto count_text =
       attribute(std::string_view(text.data() + piece, piece_end - piece), "NumberOfPoints");
   const auto count = count_text ? to_number(*count_text) : std::nullopt;
-  if (!count || *count < 0) throw fail("no NumberOfPoints");
+  // Each coordinate takes at least two characters: a count beyond that is not this file's.
+  if (!count || !(*count >= 0) || *count != std::floor(*count) ||
+      *count > static_cast<double>(text.size())) {
+    throw fail("no usable NumberOfPoints");
+  }
   const auto n = static_cast<std::size_t>(*count);
   const auto points = text.find("<Points>", piece);
   if (points == std::string::npos) throw fail("no <Points>");
@@ -124,6 +129,7 @@ std::vector<std::array<double, 3>> read_vtu_points(const fs::path& path) {
   }
   const auto close = text.find("</DataArray>", array_end);
   if (close == std::string::npos) throw fail("an unterminated <DataArray>");
+  if (3 * n > close - array_end) throw fail("fewer coordinates than NumberOfPoints says");
   std::vector<std::array<double, 3>> out(n);
   const char* p = text.data() + array_end + 1;
   const char* const stop = text.data() + close;

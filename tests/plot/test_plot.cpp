@@ -16,6 +16,7 @@
 #include "app/cli.hpp"
 #include "config/case.hpp"
 #include "plot/figures.hpp"
+#include "plot/snapshots.hpp"
 #include "plot/table.hpp"
 #include "support/cli_runner.hpp"
 #include "theory/scaling.hpp"
@@ -465,6 +466,32 @@ TEST_F(Plot, GnuplotErrorIsReported) {
 // out; the quote tries to close a single-quoted string first.
 std::string hostile(const fs::path& marker) {
   return "x'\nsystem('touch " + marker.string() + "')\r\n# ";
+}
+
+TEST(PlotSnapshots, DamagedSnapshotsAreRefusedNotReadPastTheirEnd) {
+  // Inputs that crashed or could exhaust memory before: a <Piece without '>', a point count
+  // far beyond the file, a count that is not a whole number.
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_plot_bad_vtu";
+  std::filesystem::create_directories(dir);
+  const auto refuse = [&](const std::string& text) {
+    std::ofstream(dir / "f.vtu") << text;
+    try {
+      (void)read_vtu_points(dir / "f.vtu");
+    } catch (const PlotInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refuse("<VTKFile><Piece NumberOfPoints=\"3\""), "");
+  const std::string grid =
+      "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+      "0 0 0\n</DataArray>";
+  EXPECT_NE(refuse("<Piece NumberOfPoints=\"1e18\">" + grid).find("NumberOfPoints"),
+            std::string::npos);
+  EXPECT_NE(refuse("<Piece NumberOfPoints=\"2.5\">" + grid), "");
+  EXPECT_NE(refuse("<Piece NumberOfPoints=\"50\">" + grid).find("fewer coordinates"),
+            std::string::npos);
+  EXPECT_EQ(refuse("<Piece NumberOfPoints=\"1\">" + grid), "");  // the good one
 }
 
 TEST(PlotScript, QuotedTextHasNoControlCharacters) {
