@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -45,6 +46,10 @@ pid_t spawn_run(const ExecOptions& o, const std::vector<std::string>& args, cons
     }
   }
   env_text.push_back(fmt::format("OMP_NUM_THREADS={}", o.threads));
+  // A sweep fills the machine (jobs x threads = cores): threads that spin while they wait then
+  // make a run many times slower (docs/performance.md, "Threads under load"), so its runs wait
+  // passively unless the user chose a policy.
+  if (std::getenv("OMP_WAIT_POLICY") == nullptr) env_text.emplace_back("OMP_WAIT_POLICY=passive");
   // The child ties its life to this process (app/run.cpp): a sweep killed with -9 leaves no
   // runs going on that a restarted sweep would start a second time.
   env_text.push_back(fmt::format("SNAPJUMP_SWEEP_PARENT={}", ::getpid()));
