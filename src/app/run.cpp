@@ -15,7 +15,6 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
 #include "app/checkpoint.hpp"
 #include "app/cli.hpp"
@@ -26,7 +25,6 @@
 #include "io/vtu.hpp"
 #include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
-#include "mpm/stepper.hpp"
 #include "plot/figures.hpp"
 #include "popper/popper.hpp"
 #include "theory/scaling.hpp"

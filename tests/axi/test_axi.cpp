@@ -10,7 +10,7 @@
 
 #include "axi/body.hpp"
 #include "axi/dynamics.hpp"
-#include "contact/contact.hpp"
+#include "support/disk_branch.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::axi {
@@ -191,22 +191,7 @@ TEST(AxiPlate, PressedCapFollowsTheContactSolverAndReissner) {
   d.translate_z(shift);
   d.attach(rim, 0.3, shift);
   d.set_damping(0.3 * std::sqrt(kE / kRho) / kR);
-  const double kappa = 12.0 * (1.0 - nu * nu);
-  const double D = kE * kH * kH * kH / kappa;
-  std::vector<std::pair<double, double>> theory;  // (e, F)
-  for (const auto& p : contact::disk_branch()) {
-    theory.emplace_back(p.e_hat * kH / std::sqrt(kappa), D / kR * p.N);
-  }
-  const auto F_theory = [&](double e) {
-    for (std::size_t i = 1; i < theory.size(); ++i) {
-      if (theory[i].first >= e) {
-        const auto [e0, f0] = theory[i - 1];
-        const auto [e1, f1] = theory[i];
-        return f0 + (f1 - f0) * (e - e0) / (e1 - e0);
-      }
-    }
-    return std::nan("");
-  };
+  const test_support::DiskBranchForce F_theory(kR, kH, kE, nu);
   const double k_reissner = theory::reissner_stiffness(kE, kH, kR, nu);
   double worst = 0.0, impulse = 0.0, window = 0.0, slope = 0.0;
   while (-rim.z < 2.0 * kH) {

@@ -48,18 +48,28 @@ TEST(RunResume, PausedAndResumedRunMatchesAStraightOne) {
   EXPECT_EQ(read(paused / "run.pvd"), read(straight / "run.pvd"));
 }
 
-TEST(RunResume, AxisymmetricRunResumesExactly) {
-  // The same through the axisymmetric model, paused in the ring stage.
-  const auto base = std::filesystem::temp_directory_path() / "snapjump_resume_axi_test";
+// An axisymmetric coarse run of the default popper to 60 ms, straight and paused at pause_at,
+// in base/straight and base/paused.
+struct PausedAndStraight {
+  std::filesystem::path straight, paused;
+};
+PausedAndStraight axisymmetric_runs(const std::string& name, const std::string& pause_at) {
+  const auto base = std::filesystem::temp_directory_path() / name;
   std::filesystem::remove_all(base);
-  const auto straight = base / "straight", paused = base / "paused";
+  const PausedAndStraight r{base / "straight", base / "paused"};
   const std::vector<std::string> common = {"run",    "--model", "axisymmetric", "--resolution",
                                            "coarse", "--quiet", "--end-time",   "60ms"};
   auto a = common, b = common;
-  a.insert(a.end(), {"--output", straight.string()});
-  b.insert(b.end(), {"--pause-at", "25ms", "--output", paused.string()});
-  ASSERT_EQ(run(a), 0);
-  ASSERT_EQ(run(b), 0);
+  a.insert(a.end(), {"--output", r.straight.string()});
+  b.insert(b.end(), {"--pause-at", pause_at, "--output", r.paused.string()});
+  EXPECT_EQ(run(a), 0);
+  EXPECT_EQ(run(b), 0);
+  return r;
+}
+
+TEST(RunResume, AxisymmetricRunResumesExactly) {
+  // The same through the axisymmetric model, paused in the ring stage.
+  const auto [straight, paused] = axisymmetric_runs("snapjump_resume_axi_test", "25ms");
   EXPECT_NE(read(paused / "series.csv"), read(straight / "series.csv"));
   ASSERT_EQ(run({"run", "--resume", paused.string(), "--quiet"}), 0);
   EXPECT_EQ(read(paused / "series.csv"), read(straight / "series.csv"));
@@ -72,16 +82,7 @@ TEST(RunResume, AResumeKilledWhileRewritingTheSeriesCanBeResumedAgain) {
   // The resume rewrites series.csv up to its checkpoint; a run stopped in the middle of that
   // rewrite (here by an injected fault) must leave a folder that resumes. It did not when the
   // series was truncated in place.
-  const auto base = std::filesystem::temp_directory_path() / "snapjump_resume_fault_test";
-  std::filesystem::remove_all(base);
-  const auto straight = base / "straight", paused = base / "paused";
-  const std::vector<std::string> common = {"run",    "--model", "axisymmetric", "--resolution",
-                                           "coarse", "--quiet", "--end-time",   "60ms"};
-  auto a = common, b = common;
-  a.insert(a.end(), {"--output", straight.string()});
-  b.insert(b.end(), {"--pause-at", "45ms", "--output", paused.string()});
-  ASSERT_EQ(run(a), 0);
-  ASSERT_EQ(run(b), 0);
+  const auto [straight, paused] = axisymmetric_runs("snapjump_resume_fault_test", "45ms");
   RunOptions faulty;
   faulty.resume = paused.string();
   faulty.quiet = true;

@@ -11,7 +11,7 @@
 #include <numbers>
 #include <vector>
 
-#include "contact/contact.hpp"
+#include "support/disk_branch.hpp"
 #include "validation/shell_over_plate.hpp"
 
 namespace snapjump {
@@ -37,24 +37,8 @@ TEST(ShellOnPlate, ForceAgainstIndentationFollowsTheContactSolver) {
     samples.push_back({-rim.z, F});
   }
 
-  // The contact solver's disk branch in physical units: F = (D / R) N, e = e_hat h / sqrt(kappa).
-  const double kappa = 12.0 * (1.0 - nu * nu);
-  const double D = E * h * h * h / kappa;
-  std::vector<std::pair<double, double>> theory;  // (e, F)
-  for (const auto& p : contact::disk_branch()) {
-    theory.emplace_back(p.e_hat * h / std::sqrt(kappa), D / R * p.N);
-  }
-  const auto F_theory = [&](double e) {
-    if (e <= 0.0) return 0.0;
-    for (std::size_t i = 1; i < theory.size(); ++i) {
-      if (theory[i].first >= e) {
-        const auto [e0, f0] = theory[i - 1];
-        const auto [e1, f1] = theory[i];
-        return f0 + (f1 - f0) * (e - e0) / (e1 - e0);
-      }
-    }
-    return std::numeric_limits<double>::quiet_NaN();
-  };
+  // The contact solver's disk branch in physical units.
+  const test_support::DiskBranchForce F_theory(R, h, E, nu);
 
   // Where the contact starts is known only to about a grid cell (the plate acts on the grid
   // nodes within its reach), so the one free parameter is the rim height at first contact,
