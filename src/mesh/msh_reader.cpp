@@ -98,15 +98,19 @@ ModelTets tets_of_current_model(const std::function<MeshError(const std::string&
   return out;
 }
 
-Mesh read_msh(const std::filesystem::path& path) {
+namespace {
+
+Mesh read_msh_unguarded(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw MeshError(fmt::format("{}: no such mesh file", path.string()));
   }
   GmshSession session;
+  // gmsh keeps its last error across sessions: only a new one is this file's.
+  std::string before, error;
+  gmsh::logger::getLastError(before);
   gmsh::open(path.string());
-  std::string error;
   gmsh::logger::getLastError(error);
-  if (!error.empty())
+  if (!error.empty() && error != before)
     throw MeshError(fmt::format("{}: gmsh cannot read it: {}", path.string(), error));
   const auto fail = [&](const std::string& what) {
     return MeshError(fmt::format("{}: {}", path.string(), what));
@@ -256,6 +260,25 @@ Mesh read_msh(const std::filesystem::path& path) {
   return m;
 }
 
+}  // namespace
+
+Mesh read_msh(const std::filesystem::path& path) {
+  // gmsh reports some errors by throwing a std::string or an int, which nothing else here
+  // expects: every error leaves as a MeshError naming the file. (A file that crashes gmsh itself
+  // cannot be guarded in this process.)
+  try {
+    return read_msh_unguarded(path);
+  } catch (const MeshError&) {
+    throw;
+  } catch (const std::string& e) {
+    throw MeshError(fmt::format("{}: gmsh cannot read it: {}", path.string(), e));
+  } catch (const std::exception& e) {
+    throw MeshError(fmt::format("{}: cannot be read as a shell mesh: {}", path.string(), e.what()));
+  } catch (int code) {
+    throw MeshError(fmt::format("{}: gmsh cannot read it (error {})", path.string(), code));
+  }
+}
+
 }  // namespace snapjump::mesh
 
 namespace snapjump::mesh {
@@ -312,10 +335,13 @@ void write_msh(const Mesh& m, const std::filesystem::path& path) {
   gmsh::model::setPhysicalName(2, gmsh::model::addPhysicalGroup(2, {out}), "outer");
   gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
   gmsh::option::setNumber("Mesh.SaveAll", 0);
+  std::string before, error;
+  gmsh::logger::getLastError(before);  // gmsh keeps its last error: only a new one is ours
   gmsh::write(path.string());
-  std::string error;
   gmsh::logger::getLastError(error);
-  if (!error.empty()) throw MeshError(fmt::format("{}: cannot write: {}", path.string(), error));
+  if (!error.empty() && error != before) {
+    throw MeshError(fmt::format("{}: cannot write: {}", path.string(), error));
+  }
 }
 
 }  // namespace snapjump::mesh

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <functional>
 #include <numbers>
+#include <sstream>
 
 #include "mesh/cap_mesher.hpp"
 #include "mesh/msh_reader.hpp"
@@ -161,6 +162,38 @@ TEST(MeshCheck, InvertedAndDegenerateElementsAreNamed) {
   std::swap(m.tets[3][4], m.tets[3][6]);
   std::swap(m.tets[3][8], m.tets[3][9]);
   expect_mesh_error([&] { check_mesh(m); }, "element 3 ");
+}
+
+TEST(Msh, DamagedFilesGiveAMeshErrorNamingTheFile) {
+  // Whatever gmsh throws (a std::string, an int, a std::exception) leaves read_msh as a
+  // MeshError with the file's name: cut files, a bad version, garbage where nodes should be.
+  const auto& m = cap();
+  const auto good_path = temp_file("good.msh");
+  write_msh(m, good_path);
+  std::ifstream in(good_path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string good = text.str();
+  const auto nodes = good.find("$Nodes"), end_nodes = good.find("$EndNodes");
+  ASSERT_NE(nodes, std::string::npos);
+  ASSERT_NE(end_nodes, std::string::npos);
+  const std::vector<std::string> damaged = {
+      "",
+      good.substr(0, good.size() / 2),
+      "$MeshFormat\n9.9 0 8\n$EndMeshFormat\n",
+      good.substr(0, nodes + 7) + "99999999999 -3 x y\n" + good.substr(end_nodes),
+      good.substr(0, good.find("$Elements") + 20),
+  };
+  const auto path = temp_file("damaged.msh");
+  for (const auto& d : damaged) {
+    std::ofstream(path) << d;
+    try {
+      (void)read_msh(path);
+      ADD_FAILURE() << "read a damaged file of " << d.size() << " bytes";
+    } catch (const MeshError& e) {
+      EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(Msh, RoundTripKeepsMeshAndGroups) {
