@@ -49,20 +49,13 @@ void BM_AxiPopperJump(benchmark::State& state) {
       break;
     }
     pop.release();
-    double airborne = -1.0, next = 1e-4;
-    bool snapped = false;
+    popper::FlightWatch flight{c.shell.R};
+    double next = 1e-4;
     while (pop.time() < 1.0) {
       pop.step();
       if (pop.time() + 1e-12 < next) continue;
       next += 1e-4;
-      const auto s = pop.sample();
-      if (s.w < 0.03 * c.shell.R) snapped = true;
-      if (snapped && s.contact == measure::ContactState::None && s.F == 0.0) {
-        if (airborne < 0 && s.vz > 0) airborne = s.t;
-      } else {
-        airborne = -1.0;
-      }
-      if (airborne >= 0 && s.t - airborne > 5e-3 && s.vz < 0) break;
+      if (flight.apex_reached(pop.sample())) break;
     }
     simulated = pop.time();
   }

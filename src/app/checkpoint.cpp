@@ -10,6 +10,7 @@
 
 #include "config/case.hpp"
 #include "io/atomic_file.hpp"
+#include "popper/state_io.hpp"
 
 namespace snapjump::app {
 namespace fs = std::filesystem;
@@ -22,16 +23,8 @@ constexpr std::size_t kTrailer = sizeof kTrailerMagic + sizeof(std::uint64_t);
 constexpr std::uint64_t kMaxFrames = 10'000'000, kMaxName = 4096;
 constexpr std::uintmax_t kMaxFile = std::uintmax_t{16} << 30;
 
-template <typename T>
-void put(std::ostream& out, const T& v) {
-  out.write(reinterpret_cast<const char*>(&v), sizeof v);
-}
-template <typename T>
-T get(std::istream& in) {
-  T v{};
-  in.read(reinterpret_cast<char*>(&v), sizeof v);
-  return v;
-}
+using popper::get;
+using popper::put;
 
 }  // namespace
 
@@ -48,7 +41,8 @@ std::string encode_checkpoint(const popper::Popper& pop, const LoopState& s) {
   std::ostringstream f(std::ios::binary);
   pop.save_state(f);
   f.write(kLoopMagic, sizeof kLoopMagic);
-  for (double d : {s.next_sample, s.next_snapshot, s.next_checkpoint, s.airborne_since}) put(f, d);
+  for (double d : {s.next_sample, s.next_snapshot, s.next_checkpoint, s.flight.airborne_since})
+    put(f, d);
   put(f, s.rows);
   put(f, static_cast<std::uint64_t>(s.frames.size()));
   for (const auto& [t, name] : s.frames) {
@@ -89,26 +83,29 @@ LoopState decode_checkpoint(std::string_view bytes, popper::Popper& pop, std::st
     throw fail("the release loop's state is missing or damaged");
   }
   LoopState s;
-  s.next_sample = get<double>(f);
-  s.next_snapshot = get<double>(f);
-  s.next_checkpoint = get<double>(f);
-  s.airborne_since = get<double>(f);
-  s.rows = get<std::uint64_t>(f);
-  const auto n = get<std::uint64_t>(f);
+  std::uint64_t n = 0;
+  get(f, s.next_sample);
+  get(f, s.next_snapshot);
+  get(f, s.next_checkpoint);
+  get(f, s.flight.airborne_since);
+  get(f, s.rows);
+  get(f, n);
   if (!f) throw fail("truncated in the release loop's state");
   for (const double t : {s.next_sample, s.next_snapshot, s.next_checkpoint}) {
     if (!std::isfinite(t) || t < 0.0) {
       throw fail(fmt::format("a next sample, snapshot or checkpoint time of {} s", t));
     }
   }
-  if (!std::isfinite(s.airborne_since) || s.airborne_since < -1.0) {
-    throw fail(fmt::format("a flight start of {} s", s.airborne_since));
+  if (!std::isfinite(s.flight.airborne_since) || s.flight.airborne_since < -1.0) {
+    throw fail(fmt::format("a flight start of {} s", s.flight.airborne_since));
   }
   if (n > kMaxFrames) throw fail(fmt::format("{} snapshots listed", n));
   const std::regex frame_name(R"(snapshots/frame_[0-9]{5,9}\.vtu)");
   for (std::uint64_t k = 0; k < n; ++k) {
-    const auto t = get<double>(f);
-    const auto len = get<std::uint64_t>(f);
+    double t = 0.0;
+    std::uint64_t len = 0;
+    get(f, t);
+    get(f, len);
     if (!f) throw fail("truncated in the list of snapshots");
     if (len > kMaxName) throw fail(fmt::format("a snapshot name of {} bytes", len));
     std::string name(len, '\0');

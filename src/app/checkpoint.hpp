@@ -17,7 +17,9 @@ namespace snapjump::app {
 // What the release loop needs besides the popper, saved in checkpoints with it.
 struct LoopState {
   double next_sample = 0.0, next_snapshot = 0.0, next_checkpoint = 0.0;
-  double airborne_since = -1.0;
+  // Where the flight stands (its airborne_since is saved; R and snapped follow from the case and
+  // the series).
+  popper::FlightWatch flight;
   std::uint64_t rows = 0;  // rows of series.csv that belong to this state
   std::vector<std::pair<double, std::string>> frames;  // (time, snapshots/frame_NNNNN.vtu)
 };

@@ -343,27 +343,17 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     const long start_steps = pop.steps();
     bool paused = false;
     // Whether the apex has come down (the snap's onset) in the series so far.
-    bool snapped = false;
+    loop.flight.R = c.shell.R;
     for (double w : series.column("w")) {
-      if (w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) snapped = true;
+      if (w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) loop.flight.snapped = true;
     }
     try {
       while (pop.time() < numerics.end_time) {
         pop.step();
         if (pop.time() + 1e-12 >= loop.next_sample) {
           loop.next_sample += numerics.probe_interval;
-          const auto s = record();
-          // Stop at the apex of the flight: off the plate for 5 ms and coming down. The flight
-          // starts only when the container leaves the plate going up: a shell pulled back off the
-          // plate by the suction while the popper settles is not a flight, nor a hop of the
-          // popper on its ring before the apex has come down (w / R < 0.03: the snap).
-          if (s.w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) snapped = true;
-          if (snapped && s.contact == measure::ContactState::None && s.F == 0.0) {
-            if (loop.airborne_since < 0 && s.vz > 0.0) loop.airborne_since = s.t;
-          } else {
-            loop.airborne_since = -1.0;
-          }
-          if (loop.airborne_since >= 0 && s.t - loop.airborne_since > 5e-3 && s.vz < 0.0) {
+          // Stop at the apex of the flight after the snap (popper::FlightWatch).
+          if (loop.flight.apex_reached(record())) {
             status = "completed (apex of the flight)";
             break;
           }

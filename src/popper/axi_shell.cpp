@@ -26,9 +26,8 @@ axi::Body make_body(const config::Case& c, const Numerics& n) {
 
 AxiShell::AxiShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p)
     : body_(make_body(c, n)),
-      dt_(kAxiStabilityFraction * 2.0 / body_.highest_frequency()),
-      omega_max_(2.0 * kAxiStabilityFraction / dt_),
-      dynamics_(body_, dt_) {
+      omega_max_(body_.highest_frequency()),
+      dynamics_(body_, kAxiStabilityFraction * 2.0 / omega_max_) {
   dynamics_.set_pressure(std::move(delta_p));
   const auto& X = body_.nodes();
   hole_area_ = std::numbers::pi * std::pow(X.r[body_.inner().back()], 2);
@@ -43,14 +42,14 @@ std::string AxiShell::describe() const {
       "element {:.3g} mm along, {:.3g} mm through\n  time step   {:.3g} us ({} of the "
       "stability limit 2 / omega_max, omega_max = {:.4g} rad/s)\n",
       s.along, s.through, body_.num_nodes(), 1e3 * s.R * s.phi / s.along, 1e3 * s.h / s.through,
-      1e6 * dt_, kAxiStabilityFraction, omega_max_);
+      1e6 * dynamics_.dt(), kAxiStabilityFraction, omega_max_);
 }
 
 nlohmann::json AxiShell::numerics_json() const {
   const auto& s = body_.spec();
   return {{"model", "axisymmetric"},       {"elements", body_.num_elements()},
           {"nodes", body_.num_nodes()},    {"elements_along", s.along},
-          {"elements_through", s.through}, {"dt", dt_},
+          {"elements_through", s.through}, {"dt", dynamics_.dt()},
           {"omega_max", omega_max_}};
 }
 
@@ -67,10 +66,15 @@ void AxiShell::start_on_plate(fem::RigidBody& container, double mu, double dampi
   dynamics_.translate_z(-lowest);
   dynamics_.zero_velocities();
   rim_offset_ = -lowest;
+  glue_to(container, mu, damping, 0.0, 0);
+}
+
+void AxiShell::glue_to(fem::RigidBody& container, double mu, double damping, double time,
+                       long steps) {
   dynamics_.attach(container, mu, rim_offset_);
   dynamics_.set_gravity(kG);
   dynamics_.set_damping(damping);
-  dynamics_.restore_clock(0.0, 0);
+  dynamics_.restore_clock(time, steps);
 }
 
 ShellModel::Contact AxiShell::contact() const {
@@ -111,10 +115,7 @@ void AxiShell::load_state(std::istream& in, fem::RigidBody& container, double mu
   auto& v = dynamics_.mutable_velocities();
   for (auto* a : {&x.r, &x.z, &v.r, &v.z}) get_vector(in, *a, n);
   // The container's z is read after the model's state: the rim follows it from the next step.
-  dynamics_.attach(container, mu, rim_offset_);
-  dynamics_.set_gravity(kG);
-  dynamics_.set_damping(0.0);
-  dynamics_.restore_clock(time, steps);
+  glue_to(container, mu, 0.0, time, steps);
 }
 
 void AxiShell::write_snapshot(const std::filesystem::path& path) const {

@@ -25,7 +25,7 @@ class AxiShell final : public ShellModel {
   }
   [[nodiscard]] double hole_area() const override { return hole_area_; }
   [[nodiscard]] double undeformed_depth() const override { return depth_outer_; }
-  [[nodiscard]] double time_step() const override { return dt_; }
+  [[nodiscard]] double time_step() const override { return dynamics_.dt(); }
 
   void start_held(double damping) override;
   void start_on_plate(fem::RigidBody& container, double mu, double damping) override;
@@ -62,9 +62,11 @@ class AxiShell final : public ShellModel {
   [[nodiscard]] const axi::Dynamics& dynamics() const { return dynamics_; }
 
  private:
+  // On the plate, the rim glued to the container at rim_offset_, gravity on, the clock set.
+  void glue_to(fem::RigidBody& container, double mu, double damping, double time, long steps);
+
   axi::Body body_;
-  double dt_ = 0.0;
-  double omega_max_ = 0.0;
+  double omega_max_ = 0.0;  // the undeformed body's highest frequency [rad/s]
   axi::Dynamics dynamics_;
   double hole_area_ = 0.0;
   double depth_outer_ = 0.0;

@@ -5,10 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <limits>
-#include <numbers>
 #include <stdexcept>
 
+#include "measure/analysis.hpp"
 #include "popper/axi_shell.hpp"
 #include "popper/mpm_shell.hpp"
 #include "popper/state_io.hpp"
@@ -19,30 +18,28 @@ namespace {
 
 constexpr double kG = config::kStandardGravity;
 
+// The value of a resolution preset.
+template <typename T>
+T per_preset(config::Resolution r, T coarse, T preset_default, T fine) {
+  switch (r) {
+    case config::Resolution::Coarse:
+      return coarse;
+    case config::Resolution::Fine:
+      return fine;
+    case config::Resolution::Default:
+      break;
+  }
+  return preset_default;
+}
+
 }  // namespace
 
 double grid_cells_per_thickness(config::Resolution r) {
-  switch (r) {
-    case config::Resolution::Coarse:
-      return kCellsPerThicknessCoarse;
-    case config::Resolution::Default:
-      return kCellsPerThicknessDefault;
-    case config::Resolution::Fine:
-      return kCellsPerThicknessFine;
-  }
-  return kCellsPerThicknessDefault;
+  return per_preset(r, kCellsPerThicknessCoarse, kCellsPerThicknessDefault, kCellsPerThicknessFine);
 }
 
 int axi_elements_through(config::Resolution r) {
-  switch (r) {
-    case config::Resolution::Coarse:
-      return kAxiThroughCoarse;
-    case config::Resolution::Default:
-      return kAxiThroughDefault;
-    case config::Resolution::Fine:
-      return kAxiThroughFine;
-  }
-  return kAxiThroughDefault;
+  return per_preset(r, kAxiThroughCoarse, kAxiThroughDefault, kAxiThroughFine);
 }
 
 Numerics resolve_numerics(const config::Case& c) {
@@ -67,6 +64,16 @@ Numerics resolve_numerics(const config::Case& c) {
   // Damping of the preparation phases: a third of the shell's membrane frequency sqrt(E/rho)/R.
   n.prep_damping = 0.3 * std::sqrt(c.material.E / c.material.rho) / c.shell.R;
   return n;
+}
+
+bool FlightWatch::apex_reached(const Sample& s) {
+  if (s.w < measure::AnalysisOptions{}.onset_ratio * R) snapped = true;
+  if (snapped && s.contact == measure::ContactState::None && s.F == 0.0) {
+    if (airborne_since < 0 && s.vz > 0.0) airborne_since = s.t;
+  } else {
+    airborne_since = -1.0;
+  }
+  return airborne_since >= 0 && s.t - airborne_since > 5e-3 && s.vz < 0.0;
 }
 
 std::vector<std::string> sample_columns() {

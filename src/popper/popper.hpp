@@ -62,6 +62,19 @@ struct Sample {
 std::vector<std::string> sample_columns();
 std::vector<double> sample_values(const Sample& s);
 
+// Watches the samples of a run for its end: the apex of the flight after the snap. The flight
+// starts when the container leaves the plate going up (no contact, no plate force, rising) once
+// the apex has come down (w / R below the analysis's onset ratio: the snap); a hop on the ring
+// before it, or a shell pulled off the plate by the suction while it settles, is no flight. Its
+// apex: off the plate for 5 ms and coming down.
+struct FlightWatch {
+  double R = 0.0;                // shell radius for w / R [m]
+  bool snapped = false;          // the apex has come down
+  double airborne_since = -1.0;  // start of the current flight [s], -1 on the plate
+  // Takes the next sample; true at the flight's apex.
+  bool apex_reached(const Sample& s);
+};
+
 struct Preparation {
   bool inverted = false;           // the shell inverted under the buckling pressure
   bool held = false;               // and stayed inverted at delta_p_j

@@ -94,7 +94,7 @@ TEST(Checkpoint, FieldsAreCheckedEvenWithAValidChecksum) {
   loop.next_checkpoint = -1.0;
   EXPECT_NE(bad(loop), "");
   loop = f.loop;
-  loop.airborne_since = std::numeric_limits<double>::infinity();
+  loop.flight.airborne_since = std::numeric_limits<double>::infinity();
   EXPECT_NE(bad(loop).find("flight start"), std::string::npos);
   loop = f.loop;
   loop.frames.emplace_back(0.01, "../../../../etc/passwd");
