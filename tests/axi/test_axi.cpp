@@ -152,7 +152,7 @@ TEST(AxiBuckling, PerfectCapSnapsNearZoellysPressure) {
   // The suction on the clamped (30, 2.0) mm cap raised from 0.3 p_c at p_c per 0.3 s, damped:
   // the perfect axisymmetric cap snaps through (its cavity falls by a tenth) near Zoelly's
   // classical pressure of the complete sphere, which deep caps approach (measured 0.99 p_c here,
-  // 0.96 at a three times slower ramp, 0.97 with 4 elements through h; docs/axisymmetric.md).
+  // docs/axisymmetric.md).
   const double nu = 0.45;
   const auto b = make(2, nu);
   const double pc = theory::zoelly_pressure(kE, kH, kR, nu), ramp = 0.3;
