@@ -26,8 +26,9 @@ void BM_InternalForces(benchmark::State& state) {
   auto x = body.mesh().nodes;
   for (std::size_t a = 0; a < x.size(); ++a) x.z[a] *= 1.001;  // a small stretch
   mesh::Points f;
+  fem::Body::ForceScratch scratch;
   for (auto _ : state) {
-    body.internal_forces(x, f);
+    body.internal_forces(x, f, scratch);
     benchmark::DoNotOptimize(f.z.data());
   }
   state.counters["elements"] = static_cast<double>(body.num_elements());

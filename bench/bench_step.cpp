@@ -1,48 +1,116 @@
 // One full MPM step of the default (30, 2.0) mm cap: particle forces, particle to grid, grid
-// rules (clamp and plate), grid to particle, rigid body. Reports ms per step and particle-steps
-// per second at 1 and 2 threads.
+// rules (clamp and plate), grid to particle, rigid body.
+//   BM_Step/<threads>/<tuned>   the default cap and the popper's grid (h/4 = 0.5 mm) at 1 and 2
+//                               threads, with the thread tuner off (0) or on (1)
+//   BM_StepSize/<scale>         one thread, the cap meshed with element size sqrt(8)^-scale times
+//                               the default's (scale -1, 0, 1: particle counts a factor of about 8
+//                               apart), the same grid: the cost per particle-step should not grow
+// Reports ms per step and particle-steps per second.
 #include <benchmark/benchmark.h>
 #include <omp.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
 
 #include "config/case.hpp"
 #include "fem/body.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mpm/body_forces.hpp"
 #include "mpm/stepper.hpp"
+#include "popper/popper.hpp"
 
 namespace {
 
 using namespace snapjump;
 
-const fem::Body& default_cap() {
-  static const fem::Body body = [] {
+// The default case's cap, element size scaled by sqrt(8)^-scale, apex a little above the plate.
+const fem::Body& cap(int scale) {
+  static std::map<int, std::unique_ptr<fem::Body>> bodies;
+  auto& b = bodies[scale];
+  if (!b) {
     const auto c = config::default_case();
-    auto m = mesh::make_cap_mesh(mesh::cap_spec(c));
-    mesh::translate_z(m, c.shell.R + c.shell.h);  // apex a little above the plate
-    return fem::Body(std::move(m),
-                     fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
-  }();
-  return body;
+    auto spec = popper::resolve_numerics(c).cap;
+    spec.element_size *= std::pow(std::sqrt(8.0), -scale);
+    auto m = mesh::make_cap_mesh(spec);
+    mesh::translate_z(m, c.shell.R + c.shell.h);
+    b = std::make_unique<fem::Body>(
+        std::move(m), fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+  }
+  return *b;
 }
 
-void BM_Step(benchmark::State& state) {
-  const auto& body = default_cap();
-  omp_set_num_threads(static_cast<int>(state.range(0)));
-  mpm::BodyForces forces(body, 9.80665, [](double) { return 1000.0; });
-  // Grid spacing: half the shell thickness (1 mm).
-  mpm::Stepper stepper(mpm::particles_of(body), forces, {body.stable_time_step(0.3), 0.001, 0.5});
+// The same stretch of the trajectory for every benchmark: the stepper starts again from the cap
+// at rest every kRestart steps (outside the timing).
+constexpr int kRestart = 500;
+
+struct Setup {
+  explicit Setup(const fem::Body& body, bool tuned)
+      : forces(body, 9.80665, [](double) { return 1000.0; }),
+        stepper(mpm::particles_of(body), forces, options(body, tuned)) {
+    container.mass = 0.04;
+    stepper.add_rule(std::make_unique<mpm::ClampRule>(container));
+    stepper.add_rule(std::make_unique<mpm::PlateRule>(0.3));
+    stepper.add_rigid_body(container);
+  }
+  static mpm::StepperOptions options(const fem::Body& body, bool tuned) {
+    mpm::StepperOptions o{body.stable_time_step(popper::kTimeStepFactor),
+                          popper::resolve_numerics(config::default_case()).dx, 0.5};
+    o.tune_threads = tuned;
+    return o;
+  }
+  mpm::BodyForces forces;
+  mpm::Stepper stepper;
   mpm::RigidBody container;
-  container.mass = 0.04;
-  stepper.add_rule(std::make_unique<mpm::ClampRule>(container));
-  stepper.add_rule(std::make_unique<mpm::PlateRule>(0.3));
-  stepper.add_rigid_body(container);
-  for (auto _ : state) stepper.step();
+};
+
+void run_steps(benchmark::State& state, const fem::Body& body, bool tuned) {
+  auto setup = std::make_unique<Setup>(body, tuned);
+  int chosen = 0;
+  for (auto _ : state) {
+    if (setup->stepper.steps() == kRestart) {
+      state.PauseTiming();
+      chosen = setup->stepper.thread_tuner().chosen();
+      setup = std::make_unique<Setup>(body, tuned);
+      state.ResumeTiming();
+    }
+    setup->stepper.step();
+  }
   const double n = static_cast<double>(body.num_nodes());
   state.counters["particles"] = n;
   state.counters["particle_steps_per_s"] =
       benchmark::Counter(n * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  // The threads the steps ran with: the tuner's choice, or all allowed when it is off.
+  state.counters["threads"] = !tuned       ? omp_get_max_threads()
+                              : chosen > 0 ? chosen
+                                           : setup->stepper.thread_tuner().chosen();
 }
-BENCHMARK(BM_Step)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+
+void BM_Step(benchmark::State& state) {
+  const auto& body = cap(0);
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  run_steps(state, body, state.range(1) != 0);
+}
+BENCHMARK(BM_Step)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
+
+void BM_StepSize(benchmark::State& state) {
+  const auto& body = cap(static_cast<int>(state.range(0)));
+  omp_set_num_threads(1);
+  run_steps(state, body, false);
+}
+BENCHMARK(BM_StepSize)
+    ->Arg(-1)
+    ->Arg(0)
+    ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
 
 }  // namespace
 

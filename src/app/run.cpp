@@ -167,6 +167,35 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
 
 // Marks the run in dir as failed in its summary.json, keeping what the summary already holds.
 // Never throws: it runs while another error is on its way out.
+// A resume refused before anything was changed: the run stays as it was (not "failed").
+class ResumeRefused : public config::CaseError {
+ public:
+  using config::CaseError::CaseError;
+};
+
+// A run continues only with the numerics it started with: a snapjump whose defaults have changed
+// since (a new time step factor, say) would go on with another time step or grid, silently. The
+// end time may differ (it is not part of the discretisation).
+void check_same_numerics(const nlohmann::json& before, const nlohmann::json& now,
+                         const fs::path& dir) {
+  std::string differ;
+  for (const auto& [key, value] : before.items()) {
+    if (key == "end_time") continue;
+    if (!now.contains(key) || now[key] != value) {
+      differ += fmt::format("\n  {}: {} when it started, {} now", key, value.dump(),
+                            now.contains(key) ? now[key].dump() : std::string("absent"));
+    }
+  }
+  if (!differ.empty()) {
+    throw ResumeRefused(fmt::format(
+        "--resume {}: this snapjump would continue the run with other numerics than it started "
+        "with:{}\n(a default changed since; set the value in the folder's case.toml, e.g. "
+        "numerics.time_step_factor = 0.4 for runs made before the factor became {}, or start "
+        "the run again)",
+        dir.string(), differ, popper::kTimeStepFactor));
+  }
+}
+
 void record_failure(const fs::path& dir, const std::string& what) {
   try {
     nlohmann::json summary = nlohmann::json::object();
@@ -262,6 +291,9 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
         const auto before = nlohmann::json::parse(prev, nullptr, false);
         if (before.is_object() && before.contains("preparation")) {
           summary["preparation"] = before["preparation"];
+        }
+        if (before.is_object() && before.contains("numerics")) {
+          check_same_numerics(before["numerics"], summary["numerics"], dir);
         }
       }
       loop = read_checkpoint(dir, pop);
@@ -424,6 +456,8 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       fmt::print(out, "  note        no figures: {}\n", e.what());
     }
     return status.rfind("failed", 0) == 0 ? kExitFailure : kExitOk;
+  } catch (const ResumeRefused&) {
+    throw;  // nothing was changed: the summary keeps its status
   } catch (const std::exception& e) {
     // Whatever stopped the run, its summary says so (a sweep reads "running" as alive).
     record_failure(dir, e.what());

@@ -54,6 +54,10 @@ constexpr KeySpec kKeys[] = {
      "0.25 mm", "MPM grid spacing (from the resolution preset when absent: h/4, h/4, h/8)"},
     {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "", "1 mm",
      "target mesh element size (from the resolution preset when absent)"},
+    {"numerics", "time_step_factor", "time-step-factor", Dimension::Dimensionless, false,
+     std::nullopt, "", "0.5",
+     "3D elastic time step factor: dt = factor * smallest node spacing / p-wave speed (0.5 when "
+     "absent; build/cfl_scan coarse mpm finds 0.6 stable and 0.7 not)"},
     {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "", "0.5 s",
      "simulated time after release (until the apex of the flight when absent)"},
 };
@@ -300,6 +304,9 @@ Case build(const Reader& r, Case c) {
   if (const auto* e = r.find(spec("numerics", "element_size"))) c.numerics.element_size = e->si;
   if (const auto* e = r.find(spec("numerics", "grid_spacing"))) c.numerics.grid_spacing = e->si;
   if (const auto* e = r.find(spec("numerics", "end_time"))) c.numerics.end_time = e->si;
+  if (const auto* e = r.find(spec("numerics", "time_step_factor"))) {
+    c.numerics.time_step_factor = e->si;
+  }
 
   // Physical admissibility, each message naming the key.
   positive("shell", "R", c.shell.R);
@@ -341,6 +348,13 @@ Case build(const Reader& r, Case c) {
   if (c.numerics.element_size) positive("numerics", "element_size", *c.numerics.element_size);
   if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
+  if (c.numerics.time_step_factor) {
+    positive("numerics", "time_step_factor", *c.numerics.time_step_factor);
+    check(*c.numerics.time_step_factor <= 1.0,
+          fmt::format("{} must not exceed 1 (the explicit step is unstable beyond about 0.6; "
+                      "build/cfl_scan)",
+                      r.where(spec("numerics", "time_step_factor"))));
+  }
   return c;
 }
 
@@ -408,6 +422,9 @@ std::string to_toml(const Case& c) {
                     static_cast<std::int64_t>(*c.numerics.elements_through_thickness));
   }
   if (c.numerics.end_time) numerics.insert("end_time", *c.numerics.end_time);
+  if (c.numerics.time_step_factor) {
+    numerics.insert("time_step_factor", *c.numerics.time_step_factor);
+  }
   toml::table doc{{"title", c.title},
                   {"shell", std::move(shell)},
                   {"material", std::move(material)},

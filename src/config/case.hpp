@@ -84,6 +84,8 @@ struct Numerics {
   // fine 2).
   std::optional<int> elements_through_thickness;
   std::optional<double> end_time;  // [s]; until the apex of the flight when absent
+  // 3D elastic time step factor; popper::kTimeStepFactor when absent.
+  std::optional<double> time_step_factor;
 };
 
 struct Case {

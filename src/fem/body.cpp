@@ -34,31 +34,6 @@ void inverse_transpose(const double F[9], double J, double out[9]) {
   out[8] = (F[0] * F[4] - F[1] * F[3]) * inv;
 }
 
-// Greedy colouring: each element takes the smallest colour not used by an element sharing a node.
-std::vector<std::vector<int>> colour_elements(const mesh::Mesh& m) {
-  const std::size_t n = m.nodes.size();
-  std::vector<std::vector<int>> node_elements(n);
-  for (std::size_t e = 0; e < m.tets.size(); ++e) {
-    for (int a : m.tets[e]) node_elements[a].push_back(static_cast<int>(e));
-  }
-  std::vector<int> colour(m.tets.size(), -1);
-  std::vector<int> used;
-  std::vector<std::vector<int>> colours;
-  for (std::size_t e = 0; e < m.tets.size(); ++e) {
-    used.assign(colours.size() + 1, 0);
-    for (int a : m.tets[e]) {
-      for (int other : node_elements[a]) {
-        if (colour[other] >= 0) used[colour[other]] = 1;
-      }
-    }
-    const int c = static_cast<int>(std::find(used.begin(), used.end(), 0) - used.begin());
-    colour[e] = c;
-    if (c == static_cast<int>(colours.size())) colours.emplace_back();
-    colours[c].push_back(static_cast<int>(e));
-  }
-  return colours;
-}
-
 }  // namespace
 
 Material Material::from_young(double E, double nu, double rho) {
@@ -179,7 +154,19 @@ Body::Body(mesh::Mesh mesh, const Material& material)
   if (!mesh_.inner_faces.empty() && !mesh_.clamped.empty() && inner_rim_.empty()) {
     throw mesh::MeshError("no inner face reaches the clamped rim: the cavity is not closed by it");
   }
-  colours_ = colour_elements(mesh_);
+  incidence_start_.assign(nn + 1, 0);
+  for (const auto& tet : mesh_.tets) {
+    for (int a : tet) ++incidence_start_[static_cast<std::size_t>(a) + 1];
+  }
+  for (std::size_t a = 0; a < nn; ++a) incidence_start_[a + 1] += incidence_start_[a];
+  incidence_.resize(static_cast<std::size_t>(incidence_start_[nn]));
+  std::vector<int> fill(incidence_start_.begin(), incidence_start_.end() - 1);
+  for (std::size_t e = 0; e < mesh_.tets.size(); ++e) {
+    for (int k = 0; k < kTetNodes; ++k) {
+      incidence_[static_cast<std::size_t>(fill[mesh_.tets[e][k]]++)] =
+          static_cast<int>(e) * kTetNodes + k;
+    }
+  }
 }
 
 double Body::quadrature_volume() const {
@@ -192,95 +179,130 @@ double Body::stable_time_step(double cfl) const {
   return cfl * min_spacing_ / material_.p_wave_speed();
 }
 
+namespace {
+
+// Records element e as inverted if it is the lowest-numbered one so far: the element a failed
+// step names does not depend on which thread found it first.
+void note_inverted(std::atomic<int>& lowest, int e) {
+  int seen = lowest.load();
+  while ((seen < 0 || e < seen) && !lowest.compare_exchange_weak(seen, e)) {
+  }
+}
+
+}  // namespace
+
 template <bool kEnergy>
-double Body::element_loop(const mesh::Points& x, mesh::Points* f) const {
-  std::atomic<int> bad{-1};
-  double energy = 0.0;
-  // Each element's energy, added up in element order after the parallel loop: a sum that does not
-  // depend on the number of threads or on which finishes first (an OpenMP reduction would).
-  std::vector<double> element_energy;
-  const Material mat = material_;
-  for (const auto& colour : colours_) {
-    const int count = static_cast<int>(colour.size());
-    if constexpr (kEnergy) element_energy.assign(colour.size(), 0.0);
-#pragma omp parallel for schedule(static)
-    for (int k = 0; k < count; ++k) {
-      const int e = colour[k];
-      const auto& tet = mesh_.tets[e];
-      double xe[kTetNodes][3];
-      for (int a = 0; a < kTetNodes; ++a) {
-        xe[a][0] = x.x[tet[a]];
-        xe[a][1] = x.y[tet[a]];
-        xe[a][2] = x.z[tet[a]];
-      }
-      double fe[kTetNodes][3] = {};
-      bool ok = true;
-      for (int q = 0; q < kQp && ok; ++q) {
-        const double* g = &grad_[(static_cast<std::size_t>(e) * kQp + q) * kGradStride];
-        const double w = weight_[static_cast<std::size_t>(e) * kQp + q];
-        double F[9] = {};
-        for (int a = 0; a < kTetNodes; ++a) {
-          for (int i = 0; i < 3; ++i) {
-            F[3 * i + 0] += xe[a][i] * g[3 * a + 0];
-            F[3 * i + 1] += xe[a][i] * g[3 * a + 1];
-            F[3 * i + 2] += xe[a][i] * g[3 * a + 2];
-          }
-        }
-        if constexpr (kEnergy) {
-          const double psi = neo_hookean_energy(mat, F);
-          if (!std::isfinite(psi)) {
-            ok = false;
-            break;
-          }
-          element_energy[static_cast<std::size_t>(k)] += w * psi;
-        } else {
-          double P[9];
-          if (!neo_hookean_stress(mat, F, P)) {
-            ok = false;
-            break;
-          }
-          for (int a = 0; a < kTetNodes; ++a) {
-            for (int i = 0; i < 3; ++i) {
-              fe[a][i] -= w * (P[3 * i] * g[3 * a] + P[3 * i + 1] * g[3 * a + 1] +
-                               P[3 * i + 2] * g[3 * a + 2]);
-            }
-          }
-        }
-      }
-      if (!ok) {
-        int expected = -1;
-        bad.compare_exchange_strong(expected, e);
-        continue;
-      }
-      if constexpr (!kEnergy) {
-        for (int a = 0; a < kTetNodes; ++a) {
-          f->x[tet[a]] += fe[a][0];
-          f->y[tet[a]] += fe[a][1];
-          f->z[tet[a]] += fe[a][2];
-        }
+bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
+  const auto& tet = mesh_.tets[static_cast<std::size_t>(e)];
+  double xe[kTetNodes][3];
+  for (int a = 0; a < kTetNodes; ++a) {
+    xe[a][0] = x.x[tet[a]];
+    xe[a][1] = x.y[tet[a]];
+    xe[a][2] = x.z[tet[a]];
+  }
+  if constexpr (kEnergy) {
+    *out = 0.0;
+  } else {
+    std::fill(out, out + 3 * kTetNodes, 0.0);
+  }
+  for (int q = 0; q < kQp; ++q) {
+    const double* g = &grad_[(static_cast<std::size_t>(e) * kQp + q) * kGradStride];
+    const double w = weight_[static_cast<std::size_t>(e) * kQp + q];
+    double F[9] = {};
+    for (int a = 0; a < kTetNodes; ++a) {
+      for (int i = 0; i < 3; ++i) {
+        F[3 * i + 0] += xe[a][i] * g[3 * a + 0];
+        F[3 * i + 1] += xe[a][i] * g[3 * a + 1];
+        F[3 * i + 2] += xe[a][i] * g[3 * a + 2];
       }
     }
     if constexpr (kEnergy) {
-      for (const double u : element_energy) energy += u;
+      const double psi = neo_hookean_energy(material_, F);
+      if (!std::isfinite(psi)) return false;
+      *out += w * psi;
+    } else {
+      double P[9];
+      if (!neo_hookean_stress(material_, F, P)) return false;
+      for (int a = 0; a < kTetNodes; ++a) {
+        for (int i = 0; i < 3; ++i) {
+          out[3 * a + i] -=
+              w * (P[3 * i] * g[3 * a] + P[3 * i + 1] * g[3 * a + 1] + P[3 * i + 2] * g[3 * a + 2]);
+        }
+      }
     }
-    if (bad.load() >= 0) break;
+  }
+  return true;
+}
+
+void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {
+  ForceScratch scratch;
+  internal_forces(x, f, scratch);
+}
+
+// One parallel region: each element's nodal forces into its own slots, then each node adds up the
+// slots of its elements in element order. No two threads write one value, and every node's sum
+// has the same order at any thread count.
+void Body::internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch& scratch) const {
+  const std::size_t n = num_nodes();
+  const long ne = static_cast<long>(mesh_.tets.size());
+  const long nn = static_cast<long>(n);
+  f.x.resize(n);
+  f.y.resize(n);
+  f.z.resize(n);
+  scratch.element_forces.resize(mesh_.tets.size() * 3 * kTetNodes);
+  double* ef = scratch.element_forces.data();
+  std::atomic<int> bad{-1};
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (long e = 0; e < ne; ++e) {
+      if (!element_pass<false>(static_cast<int>(e), x, ef + 3 * kTetNodes * e)) {
+        note_inverted(bad, static_cast<int>(e));
+      }
+    }
+    // (the loop's barrier: every slot is written, and `bad` is final)
+    if (bad.load() < 0) {
+#pragma omp for schedule(static)
+      for (long a = 0; a < nn; ++a) {
+        double s[3] = {0.0, 0.0, 0.0};
+        for (int k = incidence_start_[a]; k < incidence_start_[a + 1]; ++k) {
+          const double* slot = ef + 3 * static_cast<std::size_t>(incidence_[k]);
+          s[0] += slot[0];
+          s[1] += slot[1];
+          s[2] += slot[2];
+        }
+        f.x[a] = s[0];
+        f.y[a] = s[1];
+        f.z[a] = s[2];
+      }
+    }
   }
   if (const int e = bad.load(); e >= 0) {
     const int a = mesh_.tets[e][0];
     throw InvertedElement(e, x.x[a], x.y[a], x.z[a]);
   }
-  return energy;
 }
 
-void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {
-  const std::size_t n = num_nodes();
-  f.x.assign(n, 0.0);
-  f.y.assign(n, 0.0);
-  f.z.assign(n, 0.0);
-  element_loop<false>(x, &f);
+// Each element's energy, added up in element order after the parallel loop: a sum that does not
+// depend on the number of threads (an OpenMP reduction would).
+double Body::strain_energy(const mesh::Points& x) const {
+  const long ne = static_cast<long>(mesh_.tets.size());
+  std::vector<double> energy(mesh_.tets.size(), 0.0);
+  std::atomic<int> bad{-1};
+#pragma omp parallel for schedule(static)
+  for (long e = 0; e < ne; ++e) {
+    if (!element_pass<true>(static_cast<int>(e), x, &energy[static_cast<std::size_t>(e)])) {
+      note_inverted(bad, static_cast<int>(e));
+    }
+  }
+  if (const int e = bad.load(); e >= 0) {
+    const int a = mesh_.tets[e][0];
+    throw InvertedElement(e, x.x[a], x.y[a], x.z[a]);
+  }
+  double total = 0.0;
+  for (const double u : energy) total += u;
+  return total;
 }
-
-double Body::strain_energy(const mesh::Points& x) const { return element_loop<true>(x, nullptr); }
 
 std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
   std::vector<double> out(mesh_.tets.size(), 0.0);

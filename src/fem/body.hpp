@@ -55,7 +55,13 @@ class Body {
   // dt = cfl * min_node_spacing / p_wave_speed.
   [[nodiscard]] double stable_time_step(double cfl) const;
 
-  // f = -dW/dx at positions x (overwrites f). Throws InvertedElement.
+  // Working memory of internal_forces: one per caller that calls it every step.
+  struct ForceScratch {
+    std::vector<double> element_forces;  // [element][node][3]
+  };
+  // f = -dW/dx at positions x (overwrites f). Throws InvertedElement (the lowest-numbered
+  // inverted element). The same bits at any thread count.
+  void internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch& scratch) const;
   void internal_forces(const mesh::Points& x, mesh::Points& f) const;
   // Strain energy W at positions x. Throws InvertedElement.
   [[nodiscard]] double strain_energy(const mesh::Points& x) const;
@@ -74,12 +80,11 @@ class Body {
   // f_z -= m_a g for every node (gravity on the lumped masses).
   void add_gravity(double g, mesh::Points& f) const;
 
-  // Element colours: no two elements of one colour share a node (for race-free threads).
-  [[nodiscard]] const std::vector<std::vector<int>>& colours() const { return colours_; }
-
  private:
+  // Element e at positions x: its strain energy into out[0] (kEnergy) or its nodal forces into
+  // out[0..30). False where a quadrature point is inverted.
   template <bool kEnergy>
-  double element_loop(const mesh::Points& x, mesh::Points* f) const;
+  bool element_pass(int e, const mesh::Points& x, double* out) const;
 
   mesh::Mesh mesh_;
   Material material_;
@@ -90,7 +95,10 @@ class Body {
   double volume_ = 0.0;
   double min_spacing_ = 0.0;
   std::vector<int> inner_rim_;  // rim nodes on the inner faces (they span the rim plane)
-  std::vector<std::vector<int>> colours_;
+  // The elements at each node: node a's are incidence_[incidence_start_[a] ..
+  // incidence_start_[a + 1]), each as element * 10 + local node, in element order.
+  std::vector<int> incidence_start_;
+  std::vector<int> incidence_;
 };
 
 }  // namespace snapjump::fem

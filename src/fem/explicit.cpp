@@ -1,12 +1,15 @@
 #include "fem/explicit.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 namespace snapjump::fem {
 
 ExplicitDriver::ExplicitDriver(const Body& body, ExplicitOptions options)
-    : body_(body), options_(std::move(options)) {
+    : body_(body),
+      options_(std::move(options)),
+      tuner_(options_.tune_threads ? parallel::max_threads() : 1) {
   dt_ = options_.dt > 0.0 ? options_.dt : body_.stable_time_step(options_.cfl);
   if (!(dt_ > 0.0) || !std::isfinite(dt_))
     throw std::invalid_argument("explicit driver: bad time step");
@@ -23,7 +26,18 @@ ExplicitDriver::ExplicitDriver(const Body& body, ExplicitOptions options)
 }
 
 void ExplicitDriver::step() {
-  body_.internal_forces(x_, f_);
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  {
+    const parallel::ScopedThreadCount threads(options_.tune_threads ? tuner_.next()
+                                                                    : parallel::max_threads());
+    advance();
+  }
+  tuner_.record(std::chrono::duration<double>(Clock::now() - start).count());
+}
+
+void ExplicitDriver::advance() {
+  body_.internal_forces(x_, f_, scratch_);
   if (options_.pressure) body_.add_pressure_forces(x_, options_.pressure(time_), f_);
   if (options_.gravity != 0.0) body_.add_gravity(options_.gravity, f_);
   const auto& m = body_.mass();

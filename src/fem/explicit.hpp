@@ -8,6 +8,7 @@
 #include <unordered_map>
 
 #include "fem/body.hpp"
+#include "parallel/threads.hpp"
 
 namespace snapjump::fem {
 
@@ -24,6 +25,9 @@ struct ExplicitOptions {
   // Instead of the rigid z motion: a fixed displacement of each clamped node (node index ->
   // displacement), e.g. an exact solution imposed on the rim for a validation.
   std::function<std::array<double, 3>(int)> clamp_displacement;
+  // Choose between one thread and the most allowed by timing both (parallel::ThreadTuner);
+  // the results are the same either way.
+  bool tune_threads = true;
 };
 
 class ExplicitDriver {
@@ -45,6 +49,7 @@ class ExplicitDriver {
   [[nodiscard]] const Body& body() const { return body_; }
 
  private:
+  void advance();  // one step at the current thread count
   const Body& body_;
   ExplicitOptions options_;
   double dt_ = 0.0;
@@ -53,6 +58,8 @@ class ExplicitDriver {
   mesh::Points x_, v_, f_;
   std::vector<char> clamped_;
   std::unordered_map<int, std::array<double, 3>> clamp_offset_;  // from clamp_displacement
+  parallel::ThreadTuner tuner_;
+  Body::ForceScratch scratch_;
 };
 
 }  // namespace snapjump::fem

@@ -16,7 +16,7 @@ class BodyForces final : public ForceProvider {
       : body_(body), gravity_(gravity), pressure_(std::move(pressure)) {}
 
   void forces(const mesh::Points& x, double t, mesh::Points& f) override {
-    body_.internal_forces(x, f);
+    body_.internal_forces(x, f, scratch_);
     if (pressure_) body_.add_pressure_forces(x, pressure_(t), f);
     if (gravity_ != 0.0) body_.add_gravity(gravity_, f);
   }
@@ -25,6 +25,7 @@ class BodyForces final : public ForceProvider {
   const fem::Body& body_;
   double gravity_;
   std::function<double(double)> pressure_;
+  fem::Body::ForceScratch scratch_;
 };
 
 // Particles for a body: its reference nodes with its lumped masses; clamped nodes carry

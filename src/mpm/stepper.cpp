@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -76,7 +77,11 @@ Particles Particles::at_rest(const mesh::Points& positions, const std::vector<do
 }
 
 Stepper::Stepper(Particles particles, ForceProvider& forces, StepperOptions options)
-    : p_(std::move(particles)), forces_(forces), options_(options), grid_(options.dx) {
+    : p_(std::move(particles)),
+      forces_(forces),
+      options_(options),
+      grid_(options.dx),
+      tuner_(options.tune_threads ? parallel::max_threads() : 1) {
   if (!(options_.dt > 0.0) || !(options_.dx > 0.0)) {
     throw std::invalid_argument("stepper needs a positive time step and grid spacing");
   }
@@ -95,11 +100,18 @@ GridRule& Stepper::add_rule(std::unique_ptr<GridRule> rule) {
 }
 
 void Stepper::step() {
-  update_particle_velocities();
-  particle_to_grid();
-  apply_grid_rules();
-  grid_to_particle();
-  advance_rigid_bodies();
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  {
+    const parallel::ScopedThreadCount threads(options_.tune_threads ? tuner_.next()
+                                                                    : parallel::max_threads());
+    update_particle_velocities();
+    particle_to_grid();
+    apply_grid_rules();
+    grid_to_particle();
+    advance_rigid_bodies();
+  }
+  tuner_.record(std::chrono::duration<double>(Clock::now() - start).count());
   time_ += options_.dt;
   ++steps_;
 }

@@ -13,6 +13,7 @@
 #include "mesh/mesh.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/rules.hpp"
+#include "parallel/threads.hpp"
 
 namespace snapjump::mpm {
 
@@ -50,6 +51,9 @@ struct StepperOptions {
   // Mass-proportional damping c [1/s] (m a = f - c m v), for quasi-static phases only; 0 for
   // physical runs.
   double damping = 0.0;
+  // Let step() choose between one thread and the most allowed by timing both now and then
+  // (parallel::ThreadTuner); false: always the most allowed. The results are the same either way.
+  bool tune_threads = true;
 };
 
 // The time step: the smaller of the elastic bound (cfl_elastic * smallest node spacing / p-wave
@@ -98,6 +102,7 @@ class Stepper {
   // Largest particle speed after the last step, and the grid CFL number it gives.
   [[nodiscard]] double max_speed() const { return max_speed_; }
   [[nodiscard]] double cfl() const { return max_speed_ * options_.dt / options_.dx; }
+  [[nodiscard]] const parallel::ThreadTuner& thread_tuner() const { return tuner_; }
 
  private:
   void scatter(std::size_t n);  // one particle's share of particle_to_grid()
@@ -107,6 +112,7 @@ class Stepper {
   SparseGrid grid_;
   std::vector<std::unique_ptr<GridRule>> rules_;
   std::vector<RigidBody*> bodies_;
+  parallel::ThreadTuner tuner_;
   mesh::Points f_;
   double time_ = 0.0;
   long steps_ = 0;

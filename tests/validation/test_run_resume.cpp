@@ -93,5 +93,29 @@ TEST(RunResume, AResumeKilledWhileRewritingTheSeriesCanBeResumedAgain) {
   EXPECT_EQ(read(paused / "series.csv"), read(straight / "series.csv"));
 }
 
+TEST(RunResume, ARunIsNotContinuedWithOtherNumerics) {
+  // A run paused, then its case changed so that the discretisation differs (as a snapjump with
+  // new defaults would see it): the resume names what differs and refuses.
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_resume_numerics_test";
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--quiet",
+                 "--end-time", "10ms", "--pause-at", "2ms", "--output", dir.string()}),
+            0);
+  const auto summary = read(dir / "summary.json");
+  auto text = read(dir / "case.toml");
+  const auto at = text.find("[numerics]\n");
+  ASSERT_NE(at, std::string::npos) << text;
+  text.insert(at + 11, "elements_through_thickness = 3\n");
+  std::ofstream(dir / "case.toml") << text;
+  std::vector<std::string> args = {"snapjump", "run", "--resume", dir.string(), "--quiet"};
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
+  EXPECT_NE(err.str().find("other numerics than it started with"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("when it started"), std::string::npos) << err.str();
+  EXPECT_EQ(read(dir / "summary.json"), summary);  // still paused, not failed
+}
+
 }  // namespace
 }  // namespace snapjump::app

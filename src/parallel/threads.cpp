@@ -1,0 +1,78 @@
+#include "parallel/threads.hpp"
+
+#include <omp.h>
+
+#include <stdexcept>
+
+namespace snapjump::parallel {
+
+namespace {
+// A call at the most threads that takes this many times the one-thread median ends the trial at
+// once: under load one such call costs as much as dozens of ordinary ones.
+constexpr double kHopeless = 4.0;
+}  // namespace
+
+ScopedThreadCount::ScopedThreadCount(int threads) : previous_(omp_get_max_threads()) {
+  omp_set_num_threads(std::max(1, threads));
+}
+
+ScopedThreadCount::~ScopedThreadCount() { omp_set_num_threads(previous_); }
+
+int max_threads() { return omp_get_max_threads(); }
+
+ThreadTuner::ThreadTuner(int max_threads, int trial, int period)
+    : max_(std::max(1, max_threads)),
+      trial_(trial),
+      period_(period),
+      current_(max_),
+      chosen_(max_) {
+  if (trial < 1 || period < 2 * trial) {
+    throw std::invalid_argument("thread tuner: needs trial >= 1 and period >= 2 trial");
+  }
+  if (max_ > 1) start_trial();
+}
+
+void ThreadTuner::start_trial() {
+  one_.clear();
+  many_.clear();
+  phase_ = Phase::TrialOne;
+  current_ = 1;
+  since_trial_ = 0;
+}
+
+double ThreadTuner::median(std::vector<double>& v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+void ThreadTuner::record(double seconds) {
+  if (max_ <= 1) return;
+  switch (phase_) {
+    case Phase::TrialOne:
+      one_.push_back(seconds);
+      if (static_cast<int>(one_.size()) == trial_) {
+        phase_ = Phase::TrialMax;
+        current_ = max_;
+      }
+      return;
+    case Phase::TrialMax: {
+      many_.push_back(seconds);
+      const double one = median(one_);
+      const bool hopeless = seconds > kHopeless * one;
+      if (hopeless || static_cast<int>(many_.size()) == trial_) {
+        chosen_ = !hopeless && median(many_) < one ? max_ : 1;
+        current_ = chosen_;
+        phase_ = Phase::Settled;
+        ++trials_;
+        since_trial_ = 0;
+      }
+      return;
+    }
+    case Phase::Settled:
+      if (++since_trial_ >= period_) start_trial();
+      return;
+  }
+}
+
+}  // namespace snapjump::parallel

@@ -1,0 +1,64 @@
+// How many OpenMP threads a repeated piece of work (an MPM step) should use, chosen by timing it.
+//
+// On a shared machine a second thread can make a step a hundred times slower: every parallel
+// region ends in a barrier, and when another process holds the second core the barrier waits for
+// a descheduled thread (docs/performance.md, "Threads under load"). The tuner therefore measures:
+// every `period` calls it runs `trial` calls at one thread and `trial` at the most threads
+// allowed, and keeps the count whose median call was faster until the next trial. The results
+// do not depend on the choice: every parallel path of the step sums in an order fixed by the
+// mesh and the grid, not by the threads (tests Threads.*).
+#pragma once
+
+#include <algorithm>
+#include <vector>
+
+namespace snapjump::parallel {
+
+// Sets the OpenMP thread count for the regions that follow and restores the previous count when
+// it goes out of scope.
+class ScopedThreadCount {
+ public:
+  explicit ScopedThreadCount(int threads);
+  ~ScopedThreadCount();
+  ScopedThreadCount(const ScopedThreadCount&) = delete;
+  ScopedThreadCount& operator=(const ScopedThreadCount&) = delete;
+
+ private:
+  int previous_;
+};
+
+// The process's current OpenMP thread count (what the next parallel region would use).
+int max_threads();
+
+class ThreadTuner {
+ public:
+  // max_threads <= 1: always one thread, never a trial.
+  explicit ThreadTuner(int max_threads, int trial = 16, int period = 4000);
+
+  // The thread count for the next call.
+  [[nodiscard]] int next() const { return current_; }
+  // The duration of the call just made with next() threads.
+  void record(double seconds);
+
+  [[nodiscard]] int max_threads() const { return max_; }
+  // The count chosen by the last finished trial (max_threads() before the first).
+  [[nodiscard]] int chosen() const { return chosen_; }
+  [[nodiscard]] long trials() const { return trials_; }
+
+ private:
+  enum class Phase { TrialOne, TrialMax, Settled };
+  static double median(std::vector<double>& v);
+  void start_trial();
+
+  int max_;
+  int trial_;
+  int period_;
+  Phase phase_ = Phase::Settled;
+  int current_;
+  int chosen_;
+  long since_trial_ = 0;
+  long trials_ = 0;
+  std::vector<double> one_, many_;
+};
+
+}  // namespace snapjump::parallel

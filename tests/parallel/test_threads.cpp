@@ -1,0 +1,166 @@
+// The parallel paths of a step give the same bits at any thread count (make test runs one thread
+// per test, so these tests set the counts themselves), and the thread tuner keeps the faster count.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cstring>
+#include <numbers>
+
+#include "fem/body.hpp"
+#include "fem/explicit.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/stepper.hpp"
+#include "parallel/threads.hpp"
+
+namespace snapjump {
+namespace {
+
+using parallel::ThreadTuner;
+
+TEST(Threads, TunerKeepsTheFasterCount) {
+  ThreadTuner t(2, 4, 20);
+  // A trial: four calls at one thread, then four at two.
+  for (int k = 0; k < 4; ++k) {
+    ASSERT_EQ(t.next(), 1);
+    t.record(1.0);
+  }
+  for (int k = 0; k < 4; ++k) {
+    ASSERT_EQ(t.next(), 2);
+    t.record(0.6);
+  }
+  EXPECT_EQ(t.chosen(), 2);
+  EXPECT_EQ(t.trials(), 1);
+  // Settled for `period` calls, then the next trial; now two threads are the slower.
+  for (int k = 0; k < 20; ++k) {
+    ASSERT_EQ(t.next(), 2);
+    t.record(0.6);
+  }
+  for (int k = 0; k < 4; ++k) {
+    ASSERT_EQ(t.next(), 1);
+    t.record(1.0);
+  }
+  for (int k = 0; k < 4; ++k) {
+    ASSERT_EQ(t.next(), 2);
+    t.record(1.5);
+  }
+  EXPECT_EQ(t.chosen(), 1);
+  EXPECT_EQ(t.next(), 1);
+  EXPECT_EQ(t.trials(), 2);
+}
+
+// A machine whose other core is busy: the first call at two threads takes 70 times as long, and
+// the trial ends there rather than spending three more such calls.
+TEST(Threads, TunerLeavesAHopelessTrialAtOnce) {
+  ThreadTuner t(2, 4, 100);
+  for (int k = 0; k < 4; ++k) t.record(1.0);
+  ASSERT_EQ(t.next(), 2);
+  t.record(70.0);
+  EXPECT_EQ(t.next(), 1);
+  EXPECT_EQ(t.chosen(), 1);
+}
+
+TEST(Threads, OneThreadAllowedMeansNoTrial) {
+  ThreadTuner t(1);
+  for (int k = 0; k < 10; ++k) {
+    EXPECT_EQ(t.next(), 1);
+    t.record(1.0);
+  }
+  EXPECT_EQ(t.trials(), 0);
+  EXPECT_THROW(ThreadTuner(2, 0, 10), std::invalid_argument);
+  EXPECT_THROW(ThreadTuner(2, 8, 10), std::invalid_argument);
+}
+
+TEST(Threads, ScopedCountIsRestored) {
+  const int before = omp_get_max_threads();
+  {
+    const parallel::ScopedThreadCount c(3);
+    EXPECT_EQ(omp_get_max_threads(), 3);
+  }
+  EXPECT_EQ(omp_get_max_threads(), before);
+}
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+
+fem::Body small_cap() {
+  return fem::Body(mesh::make_cap_mesh({0.030, 0.002, 80.0 * std::numbers::pi / 180, 0.005, 2}),
+                   fem::Material::from_young(1.2e6, 0.45, 1160.0));
+}
+
+struct StepState {
+  mpm::Particles p;
+  double container_z = 0.0, plate_force = 0.0;
+};
+
+// A cap under pressure, clamped to a container, moving down onto the frictional plate: every
+// stage of the MPM step (forces, transfers, clamp, plate) runs, for 150 steps.
+StepState run_steps(const fem::Body& shell, int threads, bool tune) {
+  const parallel::ScopedThreadCount count(threads);
+  mpm::BodyForces forces(shell, 9.81, [](double) { return 2000.0; });
+  auto particles = mpm::particles_of(shell);
+  const double zmin = *std::min_element(particles.x.z.begin(), particles.x.z.end());
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    particles.x.z[i] += 0.0003 - zmin;
+    particles.v.z[i] = -0.5;
+  }
+  mpm::StepperOptions o{shell.stable_time_step(0.3), 0.001, 0.5};
+  o.tune_threads = tune;
+  mpm::Stepper s(std::move(particles), forces, o);
+  mpm::RigidBody container;
+  container.mass = 0.05;
+  container.vz = -0.5;
+  container.applied_force = -2.0;
+  s.add_rule(std::make_unique<mpm::ClampRule>(container));
+  auto& plate = dynamic_cast<mpm::PlateRule&>(s.add_rule(std::make_unique<mpm::PlateRule>(0.5)));
+  s.add_rigid_body(container);
+  double plate_force = 0.0;
+  for (int k = 0; k < 150; ++k) {
+    s.step();
+    plate_force += plate.force();
+  }
+  return {s.particles(), container.z, plate_force};
+}
+
+TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
+  const auto shell = small_cap();
+  const auto one = run_steps(shell, 1, false);
+  ASSERT_GT(one.plate_force, 0.0) << "the plate never pushed: the test would not cover it";
+  for (const int threads : {2, 4}) {
+    const auto many = run_steps(shell, threads, false);
+    EXPECT_TRUE(same_bits(one.p.x.x, many.p.x.x) && same_bits(one.p.x.y, many.p.x.y) &&
+                same_bits(one.p.x.z, many.p.x.z))
+        << threads << " threads";
+    EXPECT_TRUE(same_bits(one.p.v.z, many.p.v.z) && same_bits(one.p.C, many.p.C))
+        << threads << " threads";
+    EXPECT_EQ(std::memcmp(&one.container_z, &many.container_z, sizeof(double)), 0);
+    EXPECT_EQ(std::memcmp(&one.plate_force, &many.plate_force, sizeof(double)), 0);
+  }
+  // With the tuner switching between one and two threads on its own.
+  const auto tuned = run_steps(shell, 2, true);
+  EXPECT_TRUE(same_bits(one.p.x.z, tuned.p.x.z) && same_bits(one.p.C, tuned.p.C));
+}
+
+TEST(Threads, InternalForcesAndExplicitStepsAreTheSameAtOneAndFourThreads) {
+  const auto shell = small_cap();
+  const auto run = [&](int threads) {
+    const parallel::ScopedThreadCount count(threads);
+    fem::ExplicitOptions o;
+    o.pressure = [](double) { return 3000.0; };
+    o.tune_threads = false;
+    fem::ExplicitDriver d(shell, o);
+    for (int k = 0; k < 100; ++k) d.step();
+    mesh::Points f;
+    shell.internal_forces(d.positions(), f);
+    return std::pair{d.positions(), f};
+  };
+  const auto [x1, f1] = run(1);
+  const auto [x4, f4] = run(4);
+  EXPECT_TRUE(same_bits(x1.x, x4.x) && same_bits(x1.y, x4.y) && same_bits(x1.z, x4.z));
+  EXPECT_TRUE(same_bits(f1.x, f4.x) && same_bits(f1.y, f4.y) && same_bits(f1.z, f4.z));
+}
+
+}  // namespace
+}  // namespace snapjump
