@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages snapjump needs, and only those that are missing.
 # Used by `make run` and `make test`; safe to run again (it does nothing when all are present).
+# Extra packages for other targets come as arguments (`make fuzz`: clang libclang-rt-14-dev).
 set -euo pipefail
 
 packages=(
@@ -17,6 +18,7 @@ packages=(
   openmpi-bin libopenmpi-dev  # sweeps spread over processes (mpirun)
   gnuplot-nox            # figures (snapjump plot)
 )
+packages+=("$@")
 
 missing=()
 for p in "${packages[@]}"; do
