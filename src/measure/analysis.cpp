@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <numbers>
 #include <span>
 #include <vector>
 
@@ -294,6 +295,44 @@ std::string outcome_text(const std::optional<theory::Outcome>& o) {
   return o ? theory::to_string(*o) : std::string("undetermined");
 }
 
+std::vector<double> plate_response(std::span<const double> t, std::span<const double> F, double f,
+                                   double zeta) {
+  if (!(f > 0.0) || !(zeta > 0.0) || t.size() != F.size()) {
+    throw SeriesError(fmt::format(
+        "force plate: needs a positive frequency and damping ratio (got {} Hz, {})", f, zeta));
+  }
+  const double w = 2.0 * std::numbers::pi * f;
+  std::vector<double> y(F.size(), 0.0);
+  if (F.empty()) return y;
+  // y'' + 2 zeta w y' + w^2 y = w^2 F(t): state (y, y'), from rest at F[0].
+  double q = F[0], v = 0.0;
+  y[0] = q;
+  for (std::size_t i = 1; i < F.size(); ++i) {
+    const double span = t[i] - t[i - 1];
+    if (!(span > 0.0)) {
+      throw SeriesError(
+          fmt::format("force plate: times must increase (t = {} s after {} s)", t[i], t[i - 1]));
+    }
+    const int sub = std::max(1, static_cast<int>(std::ceil(span * w / 0.05)));
+    const double h = span / sub;
+    const auto load = [&](double s) { return F[i - 1] + (F[i] - F[i - 1]) * s / span; };
+    const auto acc = [&](double s, double qq, double vv) {
+      return w * w * (load(s) - qq) - 2.0 * zeta * w * vv;
+    };
+    for (int k = 0; k < sub; ++k) {
+      const double s = k * h;
+      const double k1q = v, k1v = acc(s, q, v);
+      const double k2q = v + 0.5 * h * k1v, k2v = acc(s + 0.5 * h, q + 0.5 * h * k1q, k2q);
+      const double k3q = v + 0.5 * h * k2v, k3v = acc(s + 0.5 * h, q + 0.5 * h * k2q, k3q);
+      const double k4q = v + h * k3v, k4v = acc(s + h, q + h * k3q, k4q);
+      q += h / 6.0 * (k1q + 2.0 * k2q + 2.0 * k3q + k4q);
+      v += h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
+    }
+    y[i] = q;
+  }
+  return y;
+}
+
 Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const config::Case* c) {
   check_options(options);
   if (!series.has(kForce)) {
@@ -357,6 +396,15 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
         F.begin());
     a.F_star = F[peak];
     a.t_F_star = t[peak];
+    if (options.plate_frequency) {
+      const auto plate = plate_response(t, F, *options.plate_frequency, options.plate_damping);
+      // The plate lags: its peak may come up to a period after the raw window's end.
+      const double until = t[last] + 1.0 / *options.plate_frequency;
+      std::size_t end = last + 1;
+      while (end < n && t[end] <= until) ++end;
+      a.F_star_plate = *std::max_element(plate.begin() + static_cast<std::ptrdiff_t>(first),
+                                         plate.begin() + static_cast<std::ptrdiff_t>(end));
+    }
     const auto rise = rise_start(F, peak);
     a.t_force_rise = rise.index < peak ? crossing_time(t, F, rise.index + 1, rise.level) : t[peak];
     if (*a.F_star > 0.0) {
@@ -410,6 +458,7 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
       if (a.r_star) a.alpha_r = *a.r_star / theory::r_c(h, R);
       if (a.e_star) a.alpha_e = *a.e_star / theory::e_c(h);
       if (a.F_star) a.alpha_F = *a.F_star / theory::F_c(E, h, R);
+      if (a.F_star_plate) a.alpha_F_plate = *a.F_star_plate / theory::F_c(E, h, R);
       if (a.t_star && m > 0.0) a.alpha_t = *a.t_star / theory::t_c(m, E, h, R);
       if (a.t_star && c->popper.mass > 0.0)
         a.alpha_t_own = *a.t_star / theory::t_c(c->popper.mass, E, h, R);
@@ -448,6 +497,7 @@ nlohmann::json to_json(const Analysis& a) {
       {"e_star", a.e_star, "m", "e*, apex displacement at the onset"},
       {"F_star", a.F_star, "N", "F*, force peak after the onset"},
       {"t_F_star", a.t_F_star, "s", "time of the force peak"},
+      {"F_star_plate", a.F_star_plate, "N", "F* through a force plate (plate_frequency)"},
       {"force_noise", a.force_noise, "N", "noise of F at the end of the record"},
       {"force_threshold", a.force_threshold, "N", "launch threshold on F"},
       {"t_launch", a.t_launch, "s", "launch"},
@@ -462,6 +512,7 @@ nlohmann::json to_json(const Analysis& a) {
       {"alpha_r", a.alpha_r, "1", "r* / sqrt(h R)"},
       {"alpha_e", a.alpha_e, "1", "e* / h"},
       {"alpha_F", a.alpha_F, "1", "F* / (E h^3 / R)"},
+      {"alpha_F_plate", a.alpha_F_plate, "1", "F* through the plate / (E h^3 / R)"},
       {"alpha_t", a.alpha_t, "1", "t* / sqrt(m R / (E h^2)), m = popper + counterweight"},
       {"alpha_t_own", a.alpha_t_own, "1", "t* / sqrt(m_p R / (E h^2)), m_p = the popper alone"},
       {"alpha_t_net", a.alpha_t_net, "1", "t* / sqrt((mg / g) R / (E h^2)), the net weight's mass"},

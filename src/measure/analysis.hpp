@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,9 @@
 #include "theory/scaling.hpp"
 
 namespace snapjump::measure {
+
+// The paper's force plate (Methods): resonant frequency 170 Hz, sampled at 5 kHz.
+inline constexpr double kPaperPlateFrequency = 170.0;  // [Hz]
 
 struct AnalysisOptions {
   // Shell radius for the onset criterion w / R < onset_ratio [m]; the case's shell.R when absent.
@@ -26,7 +30,20 @@ struct AnalysisOptions {
   double relative_threshold = 0.02;     // of F*, in the default threshold
   double noise_multiple = 4.0;          // of the noise level, in the default threshold
   double noise_window_fraction = 0.10;  // final part of the record where the noise is estimated
+  // The force as a force plate would record it: when set, F is also passed through a plate of
+  // this resonant frequency [Hz] (a second-order low-pass of unit static gain and damping ratio
+  // plate_damping) and its peak over the snap's window is reported as F_star_plate. For
+  // simulated series (the paper's plate: 170 Hz); a measured record has been through its plate.
+  std::optional<double> plate_frequency;
+  double plate_damping = 0.7;  // an assumption: the paper gives the frequency only
 };
+
+// F(t) through a second-order low-pass of resonant frequency f [Hz], damping ratio zeta and unit
+// static gain, starting at rest at F[0]; F is taken as linear between samples (RK4 substeps of
+// at most 1/20 of the period's radian). Throws SeriesError for f <= 0, zeta <= 0 or times that
+// do not increase.
+std::vector<double> plate_response(std::span<const double> t, std::span<const double> F, double f,
+                                   double zeta);
 
 // How the onset was found.
 // ApexGap: first time w / R < onset_ratio; ContactDisk: first row whose contact state is "disk".
@@ -47,6 +64,8 @@ struct Analysis {
   // Force peak after the onset.
   std::optional<double> F_star;    // [N]
   std::optional<double> t_F_star;  // time of the peak [s]
+  // The peak of F through the force plate (AnalysisOptions::plate_frequency), same window [N].
+  std::optional<double> F_star_plate;
   // The foot of the force's rise to F* [s]: with a gradual eversion it comes before the apex
   // criterion fires.
   std::optional<double> t_force_rise;
@@ -67,9 +86,10 @@ struct Analysis {
   // cannot tell (no w column or R, and no contact column).
   std::optional<theory::Outcome> outcome;
   // With a case: measured prefactors and scaled quantities.
-  std::optional<double> alpha_r;  // r* / sqrt(h R)
-  std::optional<double> alpha_e;  // e* / h
-  std::optional<double> alpha_F;  // F* / (E h^3 / R)
+  std::optional<double> alpha_r;        // r* / sqrt(h R)
+  std::optional<double> alpha_e;        // e* / h
+  std::optional<double> alpha_F;        // F* / (E h^3 / R)
+  std::optional<double> alpha_F_plate;  // F_star_plate / (E h^3 / R)
   // t* / sqrt(m R / (E h^2)) with m the theory's inertia, popper + counterweight (a rigid wire).
   std::optional<double> alpha_t;
   // The same with the popper's own mass: the limit of a wire too soft to move the counterweight

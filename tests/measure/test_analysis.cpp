@@ -15,6 +15,7 @@
 //          H_l = z(20.05 ms) = 20.05 ms * v0, H_s = 45.95 ms * v0.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -141,6 +142,56 @@ TEST(Analysis, Jump) {
   EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
   // Without a case there are no prefactors.
   EXPECT_FALSE(a.alpha_F);
+}
+
+// The force plate: a second-order low-pass, checked against its closed forms.
+std::vector<double> times(double dt, double end) {
+  std::vector<double> t;
+  for (int k = 0; k * dt <= end; ++k) t.push_back(k * dt);
+  return t;
+}
+
+TEST(ForcePlate, StepResponseOvershootsAsTheClosedFormSays) {
+  const double f = 170.0, w = 2.0 * std::numbers::pi * f;
+  const auto t = times(1e-6, 0.03);
+  std::vector<double> F(t.size(), 1.0);
+  F[0] = 0.0;  // a step of 1 N after the first microsecond
+  for (const double zeta : {0.3, 0.7}) {
+    const auto y = plate_response(t, F, f, zeta);
+    const auto peak = std::max_element(y.begin(), y.end()) - y.begin();
+    const double wd = w * std::sqrt(1.0 - zeta * zeta);
+    EXPECT_NEAR(y[peak], 1.0 + std::exp(-std::numbers::pi * zeta / std::sqrt(1 - zeta * zeta)),
+                2e-4)
+        << zeta;
+    EXPECT_NEAR(t[peak], 1e-6 + std::numbers::pi / wd, 2e-5) << zeta;
+    EXPECT_NEAR(y.back(), 1.0, 1e-4) << "static gain, " << zeta;
+  }
+}
+
+TEST(ForcePlate, AShortImpulseComesOutAsThePlatesImpulseResponse) {
+  // An impulse J = 1 mN s over 20 us: the plate's peak is J w exp(-zeta/sqrt(1 - zeta^2)
+  // atan(sqrt(1 - zeta^2)/zeta)), whatever the pulse's own height (50 N).
+  const double f = 170.0, w = 2.0 * std::numbers::pi * f, zeta = 0.7, J = 1e-3;
+  const auto t = times(2e-6, 0.02);
+  std::vector<double> F(t.size(), 0.0);
+  for (std::size_t k = 1; k < t.size() && t[k] <= 20e-6 + 1e-12; ++k) F[k] = J / 20e-6;
+  const auto y = plate_response(t, F, f, zeta);
+  const double s = std::sqrt(1.0 - zeta * zeta);
+  const double expected = J * w * std::exp(-zeta / s * std::atan(s / zeta));
+  EXPECT_NEAR(*std::max_element(y.begin(), y.end()) / expected, 1.0, 0.02);
+  EXPECT_THROW((void)plate_response(t, F, 0.0, zeta), SeriesError);
+  EXPECT_THROW((void)plate_response(t, F, f, -1.0), SeriesError);
+}
+
+TEST(Analysis, ForceThroughThePlateIsReportedBeside) {
+  auto o = with_R();
+  o.plate_frequency = kPaperPlateFrequency;
+  const auto a = analyze(make({}), o);
+  ASSERT_TRUE(a.F_star && a.F_star_plate);
+  // The synthetic snap's 2 N peak lasts about 4 ms, shorter than the plate's 5.9 ms period.
+  EXPECT_GT(*a.F_star_plate, 0.3);
+  EXPECT_LT(*a.F_star_plate, 1.2 * *a.F_star);
+  EXPECT_FALSE(analyze(make({}), with_R()).F_star_plate);  // off unless asked
 }
 
 // A gradual eversion: the force rises and peaks before the apex criterion fires. F* is the snap's
