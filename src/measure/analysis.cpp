@@ -297,9 +297,12 @@ std::string outcome_text(const std::optional<theory::Outcome>& o) {
 
 std::vector<double> plate_response(std::span<const double> t, std::span<const double> F, double f,
                                    double zeta) {
-  if (!(f > 0.0) || !(zeta > 0.0) || t.size() != F.size()) {
+  if (!(f > 0.0) || !(zeta > 0.0)) {
     throw SeriesError(fmt::format(
         "force plate: needs a positive frequency and damping ratio (got {} Hz, {})", f, zeta));
+  }
+  if (t.size() != F.size()) {
+    throw SeriesError(fmt::format("force plate: {} times for {} forces", t.size(), F.size()));
   }
   const double w = 2.0 * std::numbers::pi * f;
   std::vector<double> y(F.size(), 0.0);
