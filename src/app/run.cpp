@@ -174,8 +174,6 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   return analysis;
 }
 
-// Marks the run in dir as failed in its summary.json, keeping what the summary already holds.
-// Never throws: it runs while another error is on its way out.
 // A resume refused before anything was changed: the run stays as it was (not "failed").
 class ResumeRefused : public config::CaseError {
  public:
@@ -205,6 +203,8 @@ void check_same_numerics(const nlohmann::json& before, const nlohmann::json& now
   }
 }
 
+// Marks the run in dir as failed in its summary.json, keeping what the summary already holds.
+// Never throws: it runs while another error is on its way out.
 void record_failure(const fs::path& dir, const std::string& what) {
   try {
     nlohmann::json summary = nlohmann::json::object();
