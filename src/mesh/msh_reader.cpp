@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <fstream>
 #include <map>
 #include <set>
 #include <unordered_map>
@@ -103,6 +104,20 @@ namespace {
 Mesh read_msh_unguarded(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw MeshError(fmt::format("{}: no such mesh file", path.string()));
+  }
+  // gmsh::open reads any file it does not recognise as a .geo script: a script can run commands
+  // (SystemCall) and a malformed one crashed gmsh's parser (make fuzz, a division by zero). A
+  // .msh file starts with $MeshFormat; nothing else reaches gmsh.
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(11, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    if (!in || head != "$MeshFormat") {
+      throw MeshError(fmt::format(
+          "{}: not a gmsh .msh file (it must start with $MeshFormat; snapjump does not read "
+          ".geo scripts)",
+          path.string()));
+    }
   }
   GmshSession session;
   // gmsh keeps its last error across sessions: only a new one is this file's.

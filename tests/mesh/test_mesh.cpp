@@ -196,6 +196,22 @@ TEST(Msh, DamagedFilesGiveAMeshErrorNamingTheFile) {
   }
 }
 
+// gmsh reads a file it does not take for a mesh as a .geo script, and a script can run commands:
+// such a file is refused before gmsh sees it, and its command never runs.
+TEST(Msh, AGeoScriptIsNotRunAsAMesh) {
+  const auto marker = std::filesystem::temp_directory_path() / "snapjump-geo-marker-test";
+  std::filesystem::remove(marker);
+  const auto path = temp_file("script.msh");
+  std::ofstream(path) << "SystemCall \"touch " << marker.string() << "\";\n";
+  try {
+    (void)read_msh(path);
+    ADD_FAILURE() << "read a .geo script as a mesh";
+  } catch (const MeshError& e) {
+    EXPECT_NE(std::string(e.what()).find("$MeshFormat"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(marker));
+}
+
 TEST(Msh, RoundTripKeepsMeshAndGroups) {
   const auto& m = cap();
   const auto path = temp_file("cap.msh");
