@@ -80,10 +80,8 @@ void run_steps(benchmark::State& state, const fem::Body& body, bool tuned) {
   state.counters["particles"] = n;
   state.counters["particle_steps_per_s"] =
       benchmark::Counter(n * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
-  // The threads the steps ran with: the tuner's choice, or all allowed when it is off.
-  state.counters["threads"] = !tuned       ? omp_get_max_threads()
-                              : chosen > 0 ? chosen
-                                           : setup->stepper.thread_tuner().chosen();
+  // The threads the steps ran with: the tuner's choice (all allowed when it is off).
+  state.counters["threads"] = chosen > 0 ? chosen : setup->stepper.thread_tuner().chosen();
 }
 
 void BM_Step(benchmark::State& state) {

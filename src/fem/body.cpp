@@ -189,6 +189,13 @@ void note_inverted(std::atomic<int>& lowest, int e) {
   }
 }
 
+// Throws InvertedElement for element e (none when e < 0), placed at its first node.
+void throw_if_inverted(int e, const mesh::Mesh& m, const mesh::Points& x) {
+  if (e < 0) return;
+  const int a = m.tets[static_cast<std::size_t>(e)][0];
+  throw InvertedElement(e, x.x[a], x.y[a], x.z[a]);
+}
+
 }  // namespace
 
 template <bool kEnergy>
@@ -277,10 +284,7 @@ void Body::internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch&
       }
     }
   }
-  if (const int e = bad.load(); e >= 0) {
-    const int a = mesh_.tets[e][0];
-    throw InvertedElement(e, x.x[a], x.y[a], x.z[a]);
-  }
+  throw_if_inverted(bad.load(), mesh_, x);
 }
 
 // Each element's energy, added up in element order after the parallel loop: a sum that does not
@@ -295,10 +299,7 @@ double Body::strain_energy(const mesh::Points& x) const {
       note_inverted(bad, static_cast<int>(e));
     }
   }
-  if (const int e = bad.load(); e >= 0) {
-    const int a = mesh_.tets[e][0];
-    throw InvertedElement(e, x.x[a], x.y[a], x.z[a]);
-  }
+  throw_if_inverted(bad.load(), mesh_, x);
   double total = 0.0;
   for (const double u : energy) total += u;
   return total;

@@ -1,6 +1,5 @@
 #include "fem/explicit.hpp"
 
-#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -9,7 +8,7 @@ namespace snapjump::fem {
 ExplicitDriver::ExplicitDriver(const Body& body, ExplicitOptions options)
     : body_(body),
       options_(std::move(options)),
-      tuner_(options_.tune_threads ? parallel::max_threads() : 1) {
+      tuner_(parallel::ThreadTuner::for_process(options_.tune_threads)) {
   dt_ = options_.dt > 0.0 ? options_.dt : body_.stable_time_step(options_.cfl);
   if (!(dt_ > 0.0) || !std::isfinite(dt_))
     throw std::invalid_argument("explicit driver: bad time step");
@@ -26,14 +25,7 @@ ExplicitDriver::ExplicitDriver(const Body& body, ExplicitOptions options)
 }
 
 void ExplicitDriver::step() {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  {
-    const parallel::ScopedThreadCount threads(options_.tune_threads ? tuner_.next()
-                                                                    : parallel::max_threads());
-    advance();
-  }
-  tuner_.record(std::chrono::duration<double>(Clock::now() - start).count());
+  tuner_.run([this] { advance(); });
 }
 
 void ExplicitDriver::advance() {

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -81,7 +80,7 @@ Stepper::Stepper(Particles particles, ForceProvider& forces, StepperOptions opti
       forces_(forces),
       options_(options),
       grid_(options.dx),
-      tuner_(options.tune_threads ? parallel::max_threads() : 1) {
+      tuner_(parallel::ThreadTuner::for_process(options.tune_threads)) {
   if (!(options_.dt > 0.0) || !(options_.dx > 0.0)) {
     throw std::invalid_argument("stepper needs a positive time step and grid spacing");
   }
@@ -100,18 +99,13 @@ GridRule& Stepper::add_rule(std::unique_ptr<GridRule> rule) {
 }
 
 void Stepper::step() {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
-  {
-    const parallel::ScopedThreadCount threads(options_.tune_threads ? tuner_.next()
-                                                                    : parallel::max_threads());
+  tuner_.run([this] {
     update_particle_velocities();
     particle_to_grid();
     apply_grid_rules();
     grid_to_particle();
     advance_rigid_bodies();
-  }
-  tuner_.record(std::chrono::duration<double>(Clock::now() - start).count());
+  });
   time_ += options_.dt;
   ++steps_;
 }

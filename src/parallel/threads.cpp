@@ -32,6 +32,19 @@ ThreadTuner::ThreadTuner(int max_threads, int trial, int period)
   if (max_ > 1) start_trial();
 }
 
+ThreadTuner ThreadTuner::fixed(int threads) {
+  ThreadTuner t(threads);
+  t.tune_ = false;
+  t.phase_ = Phase::Settled;
+  t.current_ = t.max_;
+  return t;
+}
+
+ThreadTuner ThreadTuner::for_process(bool tune) {
+  const int threads = parallel::max_threads();
+  return tune ? ThreadTuner(threads) : fixed(threads);
+}
+
 void ThreadTuner::start_trial() {
   one_.clear();
   many_.clear();
@@ -47,7 +60,7 @@ double ThreadTuner::median(std::vector<double>& v) {
 }
 
 void ThreadTuner::record(double seconds) {
-  if (max_ <= 1) return;
+  if (!tune_ || max_ <= 1) return;
   switch (phase_) {
     case Phase::TrialOne:
       one_.push_back(seconds);

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <vector>
 
 namespace snapjump::parallel {
@@ -34,6 +35,22 @@ class ThreadTuner {
  public:
   // max_threads <= 1: always one thread, never a trial.
   explicit ThreadTuner(int max_threads, int trial = 16, int period = 4000);
+  // A tuner that never tries: every call runs at `threads`.
+  static ThreadTuner fixed(int threads);
+  // A step's tuner in this process: over the current OpenMP thread count, or fixed at it when
+  // `tune` is false.
+  static ThreadTuner for_process(bool tune);
+
+  // Runs work() at next() threads, times it and records the time.
+  template <typename Work>
+  void run(Work&& work) {
+    const auto start = std::chrono::steady_clock::now();
+    {
+      const ScopedThreadCount threads(current_);
+      work();
+    }
+    record(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
 
   // The thread count for the next call.
   [[nodiscard]] int next() const { return current_; }
@@ -50,6 +67,7 @@ class ThreadTuner {
   static double median(std::vector<double>& v);
   void start_trial();
 
+  bool tune_ = true;
   int max_;
   int trial_;
   int period_;

@@ -19,35 +19,35 @@ namespace {
 
 using parallel::ThreadTuner;
 
+// Records `calls` calls of `seconds` each, checking that each was to run at `threads`.
+void feed(ThreadTuner& t, int threads, double seconds, int calls) {
+  for (int k = 0; k < calls; ++k) {
+    ASSERT_EQ(t.next(), threads) << "call " << k;
+    t.record(seconds);
+  }
+}
+
 TEST(Threads, TunerKeepsTheFasterCount) {
   ThreadTuner t(2, 4, 20);
   // A trial: four calls at one thread, then four at two.
-  for (int k = 0; k < 4; ++k) {
-    ASSERT_EQ(t.next(), 1);
-    t.record(1.0);
-  }
-  for (int k = 0; k < 4; ++k) {
-    ASSERT_EQ(t.next(), 2);
-    t.record(0.6);
-  }
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 0.6, 4);
   EXPECT_EQ(t.chosen(), 2);
   EXPECT_EQ(t.trials(), 1);
   // Settled for `period` calls, then the next trial; now two threads are the slower.
-  for (int k = 0; k < 20; ++k) {
-    ASSERT_EQ(t.next(), 2);
-    t.record(0.6);
-  }
-  for (int k = 0; k < 4; ++k) {
-    ASSERT_EQ(t.next(), 1);
-    t.record(1.0);
-  }
-  for (int k = 0; k < 4; ++k) {
-    ASSERT_EQ(t.next(), 2);
-    t.record(1.5);
-  }
+  feed(t, 2, 0.6, 20);
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 1.5, 4);
   EXPECT_EQ(t.chosen(), 1);
   EXPECT_EQ(t.next(), 1);
   EXPECT_EQ(t.trials(), 2);
+}
+
+TEST(Threads, AFixedTunerNeverTries) {
+  auto t = ThreadTuner::fixed(3);
+  feed(t, 3, 1.0, 10);
+  EXPECT_EQ(t.chosen(), 3);
+  EXPECT_EQ(t.trials(), 0);
 }
 
 // A machine whose other core is busy: the first call at two threads takes 70 times as long, and
@@ -63,10 +63,7 @@ TEST(Threads, TunerLeavesAHopelessTrialAtOnce) {
 
 TEST(Threads, OneThreadAllowedMeansNoTrial) {
   ThreadTuner t(1);
-  for (int k = 0; k < 10; ++k) {
-    EXPECT_EQ(t.next(), 1);
-    t.record(1.0);
-  }
+  feed(t, 1, 1.0, 10);
   EXPECT_EQ(t.trials(), 0);
   EXPECT_THROW(ThreadTuner(2, 0, 10), std::invalid_argument);
   EXPECT_THROW(ThreadTuner(2, 8, 10), std::invalid_argument);
