@@ -48,6 +48,7 @@ ThreadTuner ThreadTuner::for_process(bool tune) {
 void ThreadTuner::start_trial() {
   one_.clear();
   many_.clear();
+  watched_.clear();
   phase_ = Phase::TrialOne;
   current_ = 1;
   since_trial_ = 0;
@@ -71,10 +72,10 @@ void ThreadTuner::record(double seconds) {
       return;
     case Phase::TrialMax: {
       many_.push_back(seconds);
-      const double one = median(one_);
-      const bool hopeless = seconds > kHopeless * one;
+      one_median_ = median(one_);
+      const bool hopeless = seconds > kHopeless * one_median_;
       if (hopeless || static_cast<int>(many_.size()) == trial_) {
-        chosen_ = !hopeless && median(many_) < one ? max_ : 1;
+        chosen_ = !hopeless && median(many_) < one_median_ ? max_ : 1;
         current_ = chosen_;
         phase_ = Phase::Settled;
         ++trials_;
@@ -83,9 +84,23 @@ void ThreadTuner::record(double seconds) {
       return;
     }
     case Phase::Settled:
-      if (++since_trial_ >= period_) start_trial();
+      if (++since_trial_ >= period_) {
+        start_trial();
+      } else if (chosen_ > 1 && !watch(seconds)) {
+        ++early_trials_;
+        start_trial();
+      }
       return;
   }
+}
+
+bool ThreadTuner::watch(double seconds) {
+  if (seconds > kHopeless * one_median_) return false;
+  watched_.push_back(seconds);
+  if (static_cast<int>(watched_.size()) < trial_) return true;
+  const bool slower = median(watched_) > one_median_;
+  watched_.clear();
+  return !slower;
 }
 
 }  // namespace snapjump::parallel

@@ -4,9 +4,12 @@
 // region ends in a barrier, and when another process holds the second core the barrier waits for
 // a descheduled thread (docs/performance.md, "Threads under load"). The tuner therefore measures:
 // every `period` calls it runs `trial` calls at one thread and `trial` at the most threads
-// allowed, and keeps the count whose median call was faster until the next trial. The results
-// do not depend on the choice: every parallel path of the step sums in an order fixed by the
-// mesh and the grid, not by the threads (tests Threads.*).
+// allowed, and keeps the count whose median call was faster until the next trial. While it runs
+// more than one thread it watches its own calls: one call over four times the trial's
+// one-thread median, or `trial` calls whose median is slower than that median, start a new trial
+// at once (a load that arrives after a trial, or a trial that caught a lucky moment, costs one
+// trial's calls, not a period's). The results do not depend on the choice: every parallel path of
+// the step sums in an order fixed by the mesh and the grid, not by the threads (tests Threads.*).
 #pragma once
 
 #include <algorithm>
@@ -61,11 +64,15 @@ class ThreadTuner {
   // The count chosen by the last finished trial (max_threads() before the first).
   [[nodiscard]] int chosen() const { return chosen_; }
   [[nodiscard]] long trials() const { return trials_; }
+  // How many trials the watch on a settled count above one started early.
+  [[nodiscard]] long early_trials() const { return early_trials_; }
 
  private:
   enum class Phase { TrialOne, TrialMax, Settled };
   static double median(std::vector<double>& v);
   void start_trial();
+  // A settled call at more than one thread: false when it calls for a new trial now.
+  bool watch(double seconds);
 
   bool tune_ = true;
   int max_;
@@ -76,7 +83,9 @@ class ThreadTuner {
   int chosen_;
   long since_trial_ = 0;
   long trials_ = 0;
-  std::vector<double> one_, many_;
+  long early_trials_ = 0;
+  double one_median_ = 0.0;
+  std::vector<double> one_, many_, watched_;
 };
 
 }  // namespace snapjump::parallel

@@ -61,6 +61,38 @@ TEST(Threads, TunerLeavesAHopelessTrialAtOnce) {
   EXPECT_EQ(t.chosen(), 1);
 }
 
+// The other core becomes busy after a trial chose two threads: the tuner's watch of its own
+// calls starts a new trial within one trial's length, not after the whole period.
+TEST(Threads, TunerRetriesWhenTheChosenCountSlowsDown) {
+  ThreadTuner t(2, 4, 1000);
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 0.6, 4);
+  ASSERT_EQ(t.chosen(), 2);
+  // Slower than one thread was, but never hopeless: four such calls, then a trial.
+  feed(t, 2, 1.5, 4);
+  EXPECT_EQ(t.early_trials(), 1);
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 1.5, 4);
+  EXPECT_EQ(t.chosen(), 1);
+  // Settled at one thread there is nothing to watch: slow calls wait for the period.
+  feed(t, 1, 9.0, 20);
+  EXPECT_EQ(t.early_trials(), 1);
+  EXPECT_EQ(t.trials(), 2);
+}
+
+// One settled call at two threads that takes more than four one-thread calls starts a trial at
+// once; calls as fast as the trial's keep the count.
+TEST(Threads, TunerRetriesAtOnceAfterAHopelessCall) {
+  ThreadTuner t(2, 4, 1000);
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 0.6, 4);
+  feed(t, 2, 0.7, 40);
+  EXPECT_EQ(t.early_trials(), 0);
+  feed(t, 2, 50.0, 1);
+  EXPECT_EQ(t.early_trials(), 1);
+  EXPECT_EQ(t.next(), 1);
+}
+
 TEST(Threads, OneThreadAllowedMeansNoTrial) {
   ThreadTuner t(1);
   feed(t, 1, 1.0, 10);
