@@ -5,8 +5,8 @@
 // is. The answer depends on how finely the fold next to the clamped rim is resolved
 // (docs/axisymmetric.md, "The inverted cap at rest").
 //
-//   build/inverted_cap axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm]
-//   build/inverted_cap 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm]
+//   build/inverted_cap axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
+//   build/inverted_cap 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
 #include <fmt/format.h>
 
 #include <cmath>
@@ -55,8 +55,8 @@ Result run(double& p, double pc, double final_dp, Step step, Time time, State st
 int main(int argc, char** argv) {
   if (argc < 4) {
     fmt::print(stderr,
-               "usage: {0} axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm]\n"
-               "       {0} 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm]\n",
+               "usage: {0} axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n"
+               "       {0} 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n",
                argv[0]);
     return 2;
   }
@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
     const double final_dp = argc > 4 ? std::atof(argv[4]) : 0.0;
     const double R = argc > 6 ? 1e-3 * std::atof(argv[5]) : 0.030;
     const double h = argc > 6 ? 1e-3 * std::atof(argv[6]) : 0.002;
-    const double phi = 80.0 * std::numbers::pi / 180.0;
+    const double phi = (argc > 7 ? std::atof(argv[7]) : 80.0) * std::numbers::pi / 180.0;
     const double pc = theory::zoelly_pressure(kE, h, R, kNu);
     const auto material = fem::Material::from_young(kE, kNu, kRho);
     // The popper's preparation damping; the axisymmetric model's held phases use three times it.
@@ -142,11 +142,13 @@ int main(int argc, char** argv) {
       return 2;
     }
     fmt::print(
-        "(R, h) = ({:.3g}, {:.3g}) mm, {}: at delta_p = {:.2f} p_c the shell {} (apex "
+        "(R, h) = ({:.3g}, {:.3g}) mm, phi = {:.3g} deg, {}: at delta_p = {:.2f} p_c the shell {} "
+        "(apex "
         "{:.2f} mm above the outer rim; lowest outer point at r = {:.2f} mm, {:.2f} mm "
         "below the rim)\n",
-        1e3 * R, 1e3 * h, mesh, final_dp, r.apex_over_rim > 0 ? "stays inverted" : "snaps back",
-        1e3 * r.apex_over_rim, 1e3 * r.lowest_r, 1e3 * r.lowest_below_rim);
+        1e3 * R, 1e3 * h, phi * 180.0 / std::numbers::pi, mesh, final_dp,
+        r.apex_over_rim > 0 ? "stays inverted" : "snaps back", 1e3 * r.apex_over_rim,
+        1e3 * r.lowest_r, 1e3 * r.lowest_below_rim);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;
