@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -210,6 +211,26 @@ TEST(Msh, AGeoScriptIsNotRunAsAMesh) {
     EXPECT_NE(std::string(e.what()).find("$MeshFormat"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(std::filesystem::exists(marker));
+}
+
+// gmsh reads the user's ~/.gmshrc (a script, which can run commands) and adds its own folder to
+// PATH and PYTHONPATH when it starts: a mesh session reads no such file and leaves the
+// environment as it found it, however many sessions a process opens.
+TEST(Msh, AGmshSessionReadsNoUserScriptAndLeavesTheEnvironment) {
+  const auto home = std::filesystem::temp_directory_path() / "snapjump-gmshrc-test";
+  std::filesystem::create_directories(home);
+  const auto marker = home / "marker";
+  std::filesystem::remove(marker);
+  std::ofstream(home / ".gmshrc") << "SystemCall \"touch " << marker.string() << "\";\n";
+  const std::string old_home = std::getenv("HOME") ? std::getenv("HOME") : "";
+  ::setenv("HOME", home.c_str(), 1);
+  ::unsetenv("PYTHONPATH");
+  const std::string path = std::getenv("PATH");
+  for (int k = 0; k < 3; ++k) (void)make_cap_mesh({kR, kH, kPhi, 0.012, 1});
+  ::setenv("HOME", old_home.c_str(), 1);
+  EXPECT_FALSE(std::filesystem::exists(marker));
+  EXPECT_EQ(std::getenv("PATH"), path);
+  EXPECT_EQ(std::getenv("PYTHONPATH"), nullptr);
 }
 
 TEST(Msh, RoundTripKeepsMeshAndGroups) {
