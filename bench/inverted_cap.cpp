@@ -29,7 +29,8 @@ using namespace snapjump;
 constexpr double kE = 1.2e6, kNu = 0.45, kRho = 1160.0;
 
 struct Result {
-  double apex_over_rim = 0.0;  // apex height above the outer rim [m]
+  bool inverted = false;       // the apex above the rim at the end of the 1.4 p_c phase
+  double apex_over_rim = 0.0;  // apex height above the outer rim [m], at the end
   double lowest_r = 0.0, lowest_below_rim = 0.0;
 };
 
@@ -41,13 +42,16 @@ Result run(double& p, double pc, double final_dp, Step step, Time time, State st
     p = 1.4 * pc * std::min(1.0, time() / 0.02);
     step();
   }
+  const bool inverted = state().apex_over_rim > 0.0;
   const double t0 = time();
   while (time() < t0 + 0.15) {
     const double f = std::min(1.0, (time() - t0) / 0.05);
     p = 1.4 * pc + f * (final_dp * pc - 1.4 * pc);
     step();
   }
-  return state();
+  Result r = state();
+  r.inverted = inverted;
+  return r;
 }
 
 }  // namespace
@@ -141,14 +145,17 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "model must be axisymmetric or 3d\n");
       return 2;
     }
+    const std::string head = fmt::format("(R, h) = ({:.3g}, {:.3g}) mm, phi = {:.3g} deg, {}",
+                                         1e3 * R, 1e3 * h, phi * 180.0 / std::numbers::pi, mesh);
+    if (!r.inverted) {
+      fmt::print("{}: did not invert under 1.4 p_c in 0.1 s (nothing to snap back)\n", head);
+      return 0;
+    }
     fmt::print(
-        "(R, h) = ({:.3g}, {:.3g}) mm, phi = {:.3g} deg, {}: at delta_p = {:.2f} p_c the shell {} "
-        "(apex "
-        "{:.2f} mm above the outer rim; lowest outer point at r = {:.2f} mm, {:.2f} mm "
-        "below the rim)\n",
-        1e3 * R, 1e3 * h, phi * 180.0 / std::numbers::pi, mesh, final_dp,
-        r.apex_over_rim > 0 ? "stays inverted" : "snaps back", 1e3 * r.apex_over_rim,
-        1e3 * r.lowest_r, 1e3 * r.lowest_below_rim);
+        "{}: at delta_p = {:.2f} p_c the shell {} (apex {:.2f} mm above the outer rim; lowest "
+        "outer point at r = {:.2f} mm, {:.2f} mm below the rim)\n",
+        head, final_dp, r.apex_over_rim > 0 ? "stays inverted" : "snaps back",
+        1e3 * r.apex_over_rim, 1e3 * r.lowest_r, 1e3 * r.lowest_below_rim);
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;
