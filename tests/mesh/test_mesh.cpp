@@ -222,12 +222,18 @@ TEST(Msh, AGmshSessionReadsNoUserScriptAndLeavesTheEnvironment) {
   const auto marker = home / "marker";
   std::filesystem::remove(marker);
   std::ofstream(home / ".gmshrc") << "SystemCall \"touch " << marker.string() << "\";\n";
-  const std::string old_home = std::getenv("HOME") ? std::getenv("HOME") : "";
+  const char* old_home = std::getenv("HOME");
+  const std::string saved_home = old_home ? old_home : "";
   ::setenv("HOME", home.c_str(), 1);
   ::unsetenv("PYTHONPATH");
+  ::setenv("PATH", "/usr/bin:/bin", 1);
   const std::string path = std::getenv("PATH");
   for (int k = 0; k < 3; ++k) (void)make_cap_mesh({kR, kH, kPhi, 0.012, 1});
-  ::setenv("HOME", old_home.c_str(), 1);
+  if (old_home) {
+    ::setenv("HOME", saved_home.c_str(), 1);
+  } else {
+    ::unsetenv("HOME");
+  }
   EXPECT_FALSE(std::filesystem::exists(marker));
   EXPECT_EQ(std::getenv("PATH"), path);
   EXPECT_EQ(std::getenv("PYTHONPATH"), nullptr);
