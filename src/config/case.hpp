@@ -80,8 +80,8 @@ struct Numerics {
   Resolution resolution = Resolution::Default;
   std::optional<double> element_size;  // [m]; from the resolution preset when absent
   std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)
-  // Quadratic elements across h; from the resolution preset when absent (coarse 1, default and
-  // fine 2).
+  // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
+  // 1, fine 2; axisymmetric: 2, 4, 8).
   std::optional<int> elements_through_thickness;
   std::optional<double> end_time;  // [s]; until the apex of the flight when absent
   // 3D elastic time step factor; popper::kTimeStepFactor when absent.

@@ -96,6 +96,12 @@ using Progress = std::function<void(const std::string& phase, double t, double f
 class Popper {
  public:
   Popper(const config::Case& c, const Numerics& n);
+  // The shell model's rules and the gas's callbacks hold `this` and the container's address: a
+  // popper stays where it was made.
+  Popper(const Popper&) = delete;
+  Popper& operator=(const Popper&) = delete;
+  Popper(Popper&&) = delete;
+  Popper& operator=(Popper&&) = delete;
 
   // Phases 1-3 (quasi-static, damped): buckle, set delta_p_j, ground. Returns what happened; the
   // popper is then ready for release() if prep.held.

@@ -12,7 +12,7 @@
 //   shell.h = { from = "1.5 mm", to = "2.5 mm", count = 3 }   # also: scale = "log"
 //   [zip]                                 # lists of one length, taken position by position
 //   shell.R = ["25 mm", "30 mm"]
-//   shell.E = ["1.2 MPa", "1.0 MPa"]
+//   material.E = ["1.2 MPa", "1.0 MPa"]
 //
 // Runs are numbered run-0000, run-0001, ... in the order of the product (the last [vary] key
 // changes fastest; the zip position is the outermost). Each run has its own case file, folder
