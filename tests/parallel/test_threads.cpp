@@ -61,13 +61,18 @@ TEST(Threads, TunerLeavesAHopelessTrialAtOnce) {
   EXPECT_EQ(t.chosen(), 1);
 }
 
+// A first trial (four calls each) in which two threads are the faster: the tuner settles on two.
+void settle_on_two(ThreadTuner& t) {
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 0.6, 4);
+  ASSERT_EQ(t.chosen(), 2);
+}
+
 // The other core becomes busy after a trial chose two threads: the tuner's watch of its own
 // calls starts a new trial within one trial's length, not after the whole period.
 TEST(Threads, TunerRetriesWhenTheChosenCountSlowsDown) {
   ThreadTuner t(2, 4, 1000);
-  feed(t, 1, 1.0, 4);
-  feed(t, 2, 0.6, 4);
-  ASSERT_EQ(t.chosen(), 2);
+  settle_on_two(t);
   // Slower than one thread was, but never hopeless: four such calls, then a trial.
   feed(t, 2, 1.5, 4);
   EXPECT_EQ(t.early_trials(), 1);
@@ -84,8 +89,7 @@ TEST(Threads, TunerRetriesWhenTheChosenCountSlowsDown) {
 // once; calls as fast as the trial's keep the count.
 TEST(Threads, TunerRetriesAtOnceAfterAHopelessCall) {
   ThreadTuner t(2, 4, 1000);
-  feed(t, 1, 1.0, 4);
-  feed(t, 2, 0.6, 4);
+  settle_on_two(t);
   feed(t, 2, 0.7, 40);
   EXPECT_EQ(t.early_trials(), 0);
   feed(t, 2, 50.0, 1);
