@@ -79,7 +79,8 @@ int main(int argc, char** argv) {
     std::string mesh;
     if (model == "axisymmetric") {
       const int through = std::atoi(argv[2]), along = std::atoi(argv[3]);
-      const axi::Body body({R, h, phi, through, along}, material);
+      const axi::Body body({.R = R, .h = h, .phi = phi, .through = through, .along = along},
+                           material);
       axi::Dynamics d(body, 0.3 * 2.0 / body.highest_frequency());
       d.set_pressure([&p] { return p; });
       d.set_damping(3.0 * damping);
@@ -105,7 +106,9 @@ int main(int argc, char** argv) {
     } else if (model == "3d") {
       const int layers = std::atoi(argv[2]);
       const double size = 1e-3 * std::atof(argv[3]);
-      const fem::Body body(mesh::make_cap_mesh({R, h, phi, size, layers}), material);
+      const fem::Body body(
+          mesh::make_cap_mesh({.R = R, .h = h, .phi = phi, .element_size = size, .layers = layers}),
+          material);
       fem::ExplicitOptions o;
       o.cfl = 0.4;
       o.damping = damping;

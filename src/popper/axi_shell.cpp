@@ -18,7 +18,11 @@ constexpr double kG = config::kStandardGravity;
 constexpr char kAxiMagic[] = "axisymmetric-1";
 
 axi::Body make_body(const config::Case& c, const Numerics& n) {
-  return axi::Body(axi::MeshSpec{c.shell.R, c.shell.h, c.shell.phi, n.axi_through, n.axi_along},
+  return axi::Body(axi::MeshSpec{.R = c.shell.R,
+                                 .h = c.shell.h,
+                                 .phi = c.shell.phi,
+                                 .through = n.axi_through,
+                                 .along = n.axi_along},
                    fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
 }
 

@@ -16,8 +16,9 @@ constexpr double kR = 0.030, kH = 0.002;
 const double kPhi = 80.0 * std::numbers::pi / 180.0;
 
 const Body& coarse_cap() {
-  static const Body body(mesh::make_cap_mesh({kR, kH, kPhi, 0.006, 2}),
-                         Material::from_young(1.2e6, 0.45, 1160.0));
+  static const Body body(
+      mesh::make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 0.006, .layers = 2}),
+      Material::from_young(1.2e6, 0.45, 1160.0));
   return body;
 }
 

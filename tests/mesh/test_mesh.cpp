@@ -20,7 +20,8 @@ constexpr double kR = 0.030, kH = 0.002;
 const double kPhi = 80.0 * std::numbers::pi / 180.0;
 
 const Mesh& cap() {
-  static const Mesh m = make_cap_mesh({kR, kH, kPhi, 0.006, 2});
+  static const Mesh m =
+      make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 0.006, .layers = 2});
   return m;
 }
 
@@ -66,7 +67,7 @@ TEST(CapMesh, NodeSetsLieWhereTheyShould) {
 TEST(CapMesh, MeshingKeepsTheOpenMpThreadCount) {
   const int before = omp_get_max_threads();
   omp_set_num_threads(3);
-  const auto m = make_cap_mesh({kR, kH, kPhi, 6e-3, 1});
+  const auto m = make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 6e-3, .layers = 1});
   EXPECT_EQ(omp_get_max_threads(), 3);
   omp_set_num_threads(before);
   EXPECT_FALSE(m.tets.empty());
@@ -80,7 +81,8 @@ TEST(CapMesh, LayersThroughTheThickness) {
     if (std::abs(radius(m, static_cast<int>(a)) - kR) < 1e-12) ++mid;
   }
   EXPECT_GT(mid, 0);
-  const Mesh one = make_cap_mesh({kR, kH, kPhi, 0.006, 1});
+  const Mesh one =
+      make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 0.006, .layers = 1});
   EXPECT_EQ(one.tets.size() * 2, m.tets.size());
 }
 
@@ -125,9 +127,21 @@ TEST(CapMesh, SpecFromACase) {
 }
 
 TEST(CapMesh, BadSpecIsRefused) {
-  expect_mesh_error([] { (void)make_cap_mesh({kR, kR, kPhi, 0.006, 2}); }, "0 < h < R");
-  expect_mesh_error([] { (void)make_cap_mesh({kR, kH, kPhi, 0.0, 2}); }, "element_size > 0");
-  expect_mesh_error([] { (void)make_cap_mesh({kR, kH, kPhi, 0.5, 2}); }, "too coarse");
+  expect_mesh_error(
+      [] {
+        (void)make_cap_mesh({.R = kR, .h = kR, .phi = kPhi, .element_size = 0.006, .layers = 2});
+      },
+      "0 < h < R");
+  expect_mesh_error(
+      [] {
+        (void)make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 0.0, .layers = 2});
+      },
+      "element_size > 0");
+  expect_mesh_error(
+      [] {
+        (void)make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 0.5, .layers = 2});
+      },
+      "too coarse");
 }
 
 // One straight-sided tetrahedron with its node sets, for element checks.
@@ -228,7 +242,8 @@ TEST(Msh, AGmshSessionReadsNoUserScriptAndLeavesTheEnvironment) {
   ::unsetenv("PYTHONPATH");
   ::setenv("PATH", "/usr/bin:/bin", 1);
   const std::string path = std::getenv("PATH");
-  for (int k = 0; k < 3; ++k) (void)make_cap_mesh({kR, kH, kPhi, 0.012, 1});
+  for (int k = 0; k < 3; ++k)
+    (void)make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 0.012, .layers = 1});
   if (old_home) {
     ::setenv("HOME", saved_home.c_str(), 1);
   } else {

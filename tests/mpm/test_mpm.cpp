@@ -156,9 +156,12 @@ TEST(Transfers, SpinningBodyKeepsItsAngularMomentum) {
 // Free fall of the clamped shell with its container: z(t) = -g t^2 / 2 within 0.1 %.
 TEST(FreeFall, ClampedShellAndContainerFallAtG) {
   const double g = 9.80665;
-  const fem::Body shell(
-      mesh::make_cap_mesh({0.030, 0.002, 80.0 * std::numbers::pi / 180, 0.006, 1}),
-      fem::Material::from_young(1.2e6, 0.45, 1160.0));
+  const fem::Body shell(mesh::make_cap_mesh({.R = 0.030,
+                                             .h = 0.002,
+                                             .phi = 80.0 * std::numbers::pi / 180,
+                                             .element_size = 0.006,
+                                             .layers = 1}),
+                        fem::Material::from_young(1.2e6, 0.45, 1160.0));
   BodyForces forces(shell, g);
   const double dt = shell.stable_time_step(0.3);
   Stepper s(particles_of(shell), forces, {dt, 0.003, 0.5});

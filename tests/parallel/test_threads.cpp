@@ -119,7 +119,11 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 fem::Body small_cap() {
-  return fem::Body(mesh::make_cap_mesh({0.030, 0.002, 80.0 * std::numbers::pi / 180, 0.005, 2}),
+  return fem::Body(mesh::make_cap_mesh({.R = 0.030,
+                                        .h = 0.002,
+                                        .phi = 80.0 * std::numbers::pi / 180,
+                                        .element_size = 0.005,
+                                        .layers = 2}),
                    fem::Material::from_young(1.2e6, 0.45, 1160.0));
 }
 

@@ -26,7 +26,11 @@ struct ShellOverPlate {
   explicit ShellOverPlate(double mu, double cell = kDefaultDx,
                           double element_size = std::sqrt(h * R) / 2)
       : dx(cell), gap(2.0 * cell) {
-    auto m = mesh::make_cap_mesh({R, h, 80.0 * std::numbers::pi / 180, element_size, 1});
+    auto m = mesh::make_cap_mesh({.R = R,
+                                  .h = h,
+                                  .phi = 80.0 * std::numbers::pi / 180,
+                                  .element_size = element_size,
+                                  .layers = 1});
     const auto lowest = std::min_element(m.nodes.z.begin(), m.nodes.z.end());
     apex = static_cast<std::size_t>(lowest - m.nodes.z.begin());
     mesh::translate_z(m, gap - *lowest);

@@ -32,7 +32,9 @@ double radial_displacement(const mesh::Points& X, const mesh::Points& x, int a) 
 // too; the body must reproduce it inside.
 TEST(ShellValidation, LameThickSphereExactSolution) {
   const double R = 0.030, h = 0.001, nu = 0.3, dp = 20.0;  // dp = -p_i: suction inside
-  const Body body(mesh::make_cap_mesh({R, h, kPhi, 0.003, 1}), Material::from_young(kE, nu, kRho));
+  const Body body(
+      mesh::make_cap_mesh({.R = R, .h = h, .phi = kPhi, .element_size = 0.003, .layers = 1}),
+      Material::from_young(kE, nu, kRho));
   const double a = R - h / 2, b = R + h / 2;
   const auto lame = [&](double r) {
     return -dp * a * a * a / (b * b * b - a * a * a) *
@@ -65,7 +67,9 @@ TEST(ShellValidation, LameThickSphereExactSolution) {
 // 40 deg of the apex.
 TEST(ShellValidation, MembraneStateUnderSmallPressure) {
   const double R = 0.030, h = 0.001, nu = 0.45, dp = 20.0;
-  const Body body(mesh::make_cap_mesh({R, h, kPhi, 0.003, 1}), Material::from_young(kE, nu, kRho));
+  const Body body(
+      mesh::make_cap_mesh({.R = R, .h = h, .phi = kPhi, .element_size = 0.003, .layers = 1}),
+      Material::from_young(kE, nu, kRho));
   ExplicitOptions o;
   o.cfl = 0.5;
   o.damping = 1000.0;
@@ -116,7 +120,9 @@ class FabricatedShell : public ::testing::TestWithParam<Shell> {};
 // pressure is held. The onset pressure is reported against Zoelly's p_c.
 TEST_P(FabricatedShell, BucklesAndInvertsUnderPressure) {
   const double R = GetParam().R_mm * 1e-3, h = GetParam().h_mm * 1e-3, nu = 0.45;
-  const Body body(mesh::make_cap_mesh({R, h, kPhi, 0.003, 1}), Material::from_young(kE, nu, kRho));
+  const Body body(
+      mesh::make_cap_mesh({.R = R, .h = h, .phi = kPhi, .element_size = 0.003, .layers = 1}),
+      Material::from_young(kE, nu, kRho));
   const double pc = theory::zoelly_pressure(kE, h, R, nu);
   BuckleOptions o;
   o.p_fast = 0.6 * pc;
