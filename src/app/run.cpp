@@ -385,9 +385,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     bool paused = false;
     // Whether the apex has come down (the snap's onset) in the series so far.
     loop.flight.R = c.shell.R;
-    for (double w : series.column("w")) {
-      if (w < measure::AnalysisOptions{}.onset_ratio * c.shell.R) loop.flight.snapped = true;
-    }
+    for (double w : series.column("w")) loop.flight.see_apex_gap(w);
     try {
       while (pop.time() < numerics.end_time) {
         pop.step();

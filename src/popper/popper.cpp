@@ -70,14 +70,18 @@ Numerics resolve_numerics(const config::Case& c) {
 bool FlightWatch::apex_reached(const Sample& s) {
   // The analysis's own onset and launch rules: the run stops where the analysis will find a
   // snap and a flight.
-  const measure::AnalysisOptions rules;
-  if (s.w < rules.onset_ratio * R) snapped = true;
+  see_apex_gap(s.w);
   if (snapped && s.contact == measure::ContactState::None && s.F == 0.0) {
     if (airborne_since < 0 && s.vz > 0.0) airborne_since = s.t;
   } else {
     airborne_since = -1.0;
   }
-  return airborne_since >= 0 && s.t - airborne_since > rules.min_flight_time && s.vz < 0.0;
+  return airborne_since >= 0 && s.t - airborne_since > measure::AnalysisOptions{}.min_flight_time &&
+         s.vz < 0.0;
+}
+
+void FlightWatch::see_apex_gap(double w) {
+  if (w < measure::AnalysisOptions{}.onset_ratio * R) snapped = true;
 }
 
 std::vector<std::string> sample_columns() {

@@ -79,6 +79,9 @@ struct FlightWatch {
   double airborne_since = -1.0;  // start of the current flight [s], -1 on the plate
   // Takes the next sample; true at the flight's apex.
   bool apex_reached(const Sample& s);
+  // Takes an apex gap w [m] (a sample's, or one recorded before a resume): the snap has begun
+  // once w / R falls below the analysis's onset ratio.
+  void see_apex_gap(double w);
 };
 
 struct Preparation {
