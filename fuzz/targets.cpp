@@ -11,6 +11,7 @@
 #include "app/checkpoint.hpp"
 #include "config/case.hpp"
 #include "config/units.hpp"
+#include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
 #include "mesh/mesh.hpp"
 #include "mesh/msh_reader.hpp"
@@ -49,7 +50,13 @@ void case_file(std::string_view bytes) {
 void series(std::string_view bytes) {
   std::istringstream in{std::string(bytes)};
   try {
-    (void)measure::TimeSeries::read_csv(in, "fuzz.csv", unit_parser());
+    const auto s = measure::TimeSeries::read_csv(in, "fuzz.csv", unit_parser());
+    // What was read goes through the analysis too, as `snapjump analyze` does.
+    if (!s.empty() && s.has(measure::kForce)) {
+      measure::AnalysisOptions o;
+      o.R = 0.03;
+      (void)measure::analyze(s, o);
+    }
   } catch (const measure::SeriesError&) {
   }
 }

@@ -4,6 +4,8 @@
 #include <fmt/ostream.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -182,16 +184,113 @@ int contact_cmd(const ContactOptions& o, std::ostream& out, std::ostream& err) {
 }
 
 struct AnalyzeOptions {
-  std::string series;
+  std::vector<std::string> records;
   std::string case_file;
   std::string R;
   std::string force_threshold;
+  std::string force_offset;
+  std::string settle_time;
+  bool complete = false;
+  std::vector<std::string> columns;  // NAME=HEADER
+  std::vector<std::string> units;    // NAME=UNIT
   std::string format = "table";
 };
 
-int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
+// "NAME=TEXT" -> {NAME, TEXT}; `flag` names the option in the error.
+std::pair<std::string, std::string> name_value(const std::string& text, const char* flag) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+    throw config::CaseError(
+        fmt::format("{} {}: write NAME=VALUE, e.g. {} t=\"Time (s)\" or {} F=mN", flag, text,
+                    "--column", "--unit"));
+  }
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+// One record's analysis, or the error that stopped it.
+struct RecordResult {
+  std::string file;
+  std::optional<measure::Analysis> analysis;
+  std::size_t samples = 0;
+  std::string error;
+};
+
+void print_analysis_table(std::ostream& out, const RecordResult& r, bool with_case) {
+  const auto& a = *r.analysis;
+  const auto row = [&](const char* label, const std::optional<double>& v, double scale,
+                       const char* unit) {
+    if (v) {
+      fmt::print(out, "  {:<40} {:>12.5g}  {}\n", label, *v / scale, unit);
+    } else {
+      fmt::print(out, "  {:<40} {:>12}  {}\n", label, "-", unit);
+    }
+  };
+  fmt::print(out, "snapjump analyze: {} ({} samples)\n", r.file, r.samples);
+  fmt::print(out, "  {:<40} {:>12}\n", "outcome", measure::outcome_text(a.outcome));
+  if (!a.undetermined.empty())
+    fmt::print(out, "  {:<40} {}\n", "  why undetermined", a.undetermined);
+  row("transition onset t (w/R < 0.03)", a.t_onset, 1e-3, "ms");
+  row("r*  contact radius at the onset", a.r_star, 1e-3, "mm");
+  row("e*  indentation at the onset", a.e_star, 1e-3, "mm");
+  row("    apex displacement at the onset", a.e_apex_star, 1e-3, "mm");
+  row("foot of the force's rise to F*", a.t_force_rise, 1e-3, "ms");
+  row("F*  peak plate force of the snap", a.F_star, 1.0, "N");
+  row("launch t (F back to about 0)", a.t_launch, 1e-3, "ms");
+  row("t*  onset to launch", a.t_star, 1e-3, "ms");
+  row("    force rise to launch", a.t_star_rise, 1e-3, "ms");
+  row("force threshold used for the launch", a.force_threshold, 1.0, "N");
+  row("landing t (back on the plate)", a.t_landing, 1e-3, "ms");
+  row("H   highest container position", a.H, 1e-3, "mm");
+  row("H_l container position at the onset", a.H_l, 1e-3, "mm");
+  row("H_s = H - H_l", a.H_s, 1e-3, "mm");
+  row("delta_p at the onset", a.delta_p_onset, 1e3, "kPa");
+  if (with_case) {
+    row("alpha_r = r* / sqrt(h R)", a.alpha_r, 1.0, "");
+    row("alpha_e = e* / h", a.alpha_e, 1.0, "");
+    row("alpha_F = F* / (E h^3 / R)", a.alpha_F, 1.0, "");
+    row("alpha_t = t* / sqrt(m R / (E h^2)), m = popper + counterweight", a.alpha_t, 1.0, "");
+    row("  the same with the popper's own mass", a.alpha_t_own, 1.0, "");
+    row("  the same with m = mg / g", a.alpha_t_net, 1.0, "");
+    row("H_s / (E h^4 / (mg R))", a.H_s_scaled, 1.0, "");
+  }
+  for (const auto& w : a.warnings) fmt::print(out, "  warning: {}\n", w);
+}
+
+// The quantities of the one-row-per-record table, in SI.
+struct TableColumn {
+  const char* name;
+  std::optional<double> measure::Analysis::*field;
+};
+constexpr std::array kRecordColumns{
+    TableColumn{"t_onset", &measure::Analysis::t_onset},
+    TableColumn{"r_star", &measure::Analysis::r_star},
+    TableColumn{"e_star", &measure::Analysis::e_star},
+    TableColumn{"F_star", &measure::Analysis::F_star},
+    TableColumn{"t_launch", &measure::Analysis::t_launch},
+    TableColumn{"t_star", &measure::Analysis::t_star},
+    TableColumn{"H", &measure::Analysis::H},
+    TableColumn{"H_l", &measure::Analysis::H_l},
+    TableColumn{"H_s", &measure::Analysis::H_s},
+    TableColumn{"delta_p_onset", &measure::Analysis::delta_p_onset},
+    TableColumn{"alpha_r", &measure::Analysis::alpha_r},
+    TableColumn{"alpha_e", &measure::Analysis::alpha_e},
+    TableColumn{"alpha_F", &measure::Analysis::alpha_F},
+    TableColumn{"alpha_t", &measure::Analysis::alpha_t},
+};
+
+// A CSV cell: quoted when it holds a comma, a quote or a line break.
+std::string csv_cell(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string q = "\"";
+  for (const char ch : text) {
+    if (ch == '"') q += '"';
+    q += ch;
+  }
+  return q + '"';
+}
+
+int analyze_cmd(const AnalyzeOptions& o, std::ostream& out, std::ostream& err) {
   const units::UnitParser parser;
-  const auto series = measure::TimeSeries::read_csv_file(o.series, &parser);
   std::optional<config::Case> c;
   if (!o.case_file.empty()) c = config::load_case_file(o.case_file, {}, &parser);
   measure::AnalysisOptions opts;
@@ -207,46 +306,119 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out) {
     opts.force_threshold =
         quantity(o.force_threshold, units::Dimension::Force, "--force-threshold");
   }
-  const auto a = measure::analyze(series, opts, c ? &*c : nullptr);
-  if (o.format == "json") {
-    measure::write_json(out, a);
-    return kExitOk;
+  if (!o.force_offset.empty()) {
+    opts.force_offset = quantity(o.force_offset, units::Dimension::Force, "--force-offset");
   }
-  const auto row = [&](const char* label, const std::optional<double>& v, double scale,
-                       const char* unit) {
-    if (v) {
-      fmt::print(out, "  {:<40} {:>12.5g}  {}\n", label, *v / scale, unit);
-    } else {
-      fmt::print(out, "  {:<40} {:>12}  {}\n", label, "-", unit);
+  if (!o.settle_time.empty()) {
+    opts.settle_time = quantity(o.settle_time, units::Dimension::Time, "--settle-time");
+  }
+  opts.complete = o.complete;
+  measure::ReadOptions read;
+  for (const auto& m : o.columns) read.columns.push_back(name_value(m, "--column"));
+  for (const auto& u : o.units) read.units.push_back(name_value(u, "--unit"));
+
+  std::vector<RecordResult> results;
+  for (const auto& file : o.records) {
+    RecordResult r;
+    r.file = file;
+    try {
+      const auto series = measure::TimeSeries::read_csv_file(file, &parser, read);
+      r.samples = series.size();
+      r.analysis = measure::analyze(series, opts, c ? &*c : nullptr);
+    } catch (const measure::SeriesError& e) {
+      if (o.records.size() == 1) throw;  // one record: its error is the command's
+      r.error = e.what();
+      fmt::print(err, "error: {}\n", e.what());
     }
-  };
-  fmt::print(out, "snapjump analyze: {} ({} samples)\n", o.series, series.size());
-  fmt::print(out, "  {:<40} {:>12}\n", "outcome", measure::outcome_text(a.outcome));
-  row("transition onset t (w/R < 0.03)", a.t_onset, 1e-3, "ms");
-  row("r*  contact radius at the onset", a.r_star, 1e-3, "mm");
-  row("e*  indentation at the onset", a.e_star, 1e-3, "mm");
-  row("    apex displacement at the onset", a.e_apex_star, 1e-3, "mm");
-  row("foot of the force's rise to F*", a.t_force_rise, 1e-3, "ms");
-  row("F*  peak plate force of the snap", a.F_star, 1.0, "N");
-  row("launch t (F back to about 0)", a.t_launch, 1e-3, "ms");
-  row("t*  onset to launch", a.t_star, 1e-3, "ms");
-  row("    force rise to launch", a.t_star_rise, 1e-3, "ms");
-  row("force threshold used for the launch", a.force_threshold, 1.0, "N");
-  row("H   highest container position", a.H, 1e-3, "mm");
-  row("H_l container position at the onset", a.H_l, 1e-3, "mm");
-  row("H_s = H - H_l", a.H_s, 1e-3, "mm");
-  row("delta_p at the onset", a.delta_p_onset, 1e3, "kPa");
-  if (c) {
-    row("alpha_r = r* / sqrt(h R)", a.alpha_r, 1.0, "");
-    row("alpha_e = e* / h", a.alpha_e, 1.0, "");
-    row("alpha_F = F* / (E h^3 / R)", a.alpha_F, 1.0, "");
-    row("alpha_t = t* / sqrt(m R / (E h^2)), m = popper + counterweight", a.alpha_t, 1.0, "");
-    row("  the same with the popper's own mass", a.alpha_t_own, 1.0, "");
-    row("  the same with m = mg / g", a.alpha_t_net, 1.0, "");
-    row("H_s / (E h^4 / (mg R))", a.H_s_scaled, 1.0, "");
+    results.push_back(std::move(r));
   }
-  for (const auto& w : a.warnings) fmt::print(out, "  warning: {}\n", w);
-  return kExitOk;
+  const bool failed = std::any_of(results.begin(), results.end(),
+                                  [](const RecordResult& r) { return !r.error.empty(); });
+
+  if (o.format == "json") {
+    auto one = [](const RecordResult& r) {
+      nlohmann::json j = r.analysis ? measure::to_json(*r.analysis) : nlohmann::json::object();
+      j["file"] = r.file;
+      if (!r.error.empty()) j["error"] = r.error;
+      return j;
+    };
+    if (results.size() == 1) {
+      out << one(results.front()).dump(2) << '\n';
+    } else {
+      nlohmann::json all = nlohmann::json::array();
+      for (const auto& r : results) all.push_back(one(r));
+      out << all.dump(2) << '\n';
+    }
+  } else if (o.format == "csv" || results.size() > 1) {
+    // One row per record (SI units); the table format prints it aligned.
+    const bool csv = o.format == "csv";
+    std::vector<std::string> header{"file", "outcome"};
+    for (const auto& col : kRecordColumns) header.emplace_back(col.name);
+    header.emplace_back("warnings");
+    header.emplace_back("undetermined");
+    header.emplace_back("error");
+    std::vector<std::vector<std::string>> rows;
+    for (const auto& r : results) {
+      std::vector<std::string> row{r.file};
+      if (r.analysis) {
+        const auto& a = *r.analysis;
+        row.push_back(a.outcome ? theory::to_string(*a.outcome) : std::string());
+        for (const auto& col : kRecordColumns) {
+          const auto& v = a.*col.field;
+          if (!v) {
+            row.emplace_back();
+          } else {
+            row.push_back(csv ? fmt::format("{}", *v) : fmt::format("{:.4g}", *v));
+          }
+        }
+        row.push_back(fmt::format("{}", a.warnings.size()));
+        row.push_back(a.undetermined);
+      } else {
+        row.emplace_back();
+        for (std::size_t k = 0; k < kRecordColumns.size(); ++k) row.emplace_back();
+        row.emplace_back();
+        row.emplace_back();
+      }
+      row.push_back(r.error);
+      rows.push_back(std::move(row));
+    }
+    if (csv) {
+      const auto line = [&](const std::vector<std::string>& cells) {
+        for (std::size_t k = 0; k < cells.size(); ++k) {
+          fmt::print(out, "{}{}", k > 0 ? "," : "", csv_cell(cells[k]));
+        }
+        fmt::print(out, "\n");
+      };
+      line(header);
+      for (const auto& row : rows) line(row);
+    } else {
+      // Aligned: the quantities (SI), the outcome; reasons and errors below the table.
+      const std::size_t shown = 2 + kRecordColumns.size() + 1;
+      std::vector<std::size_t> width(shown, 0);
+      for (std::size_t k = 0; k < shown; ++k) {
+        width[k] = header[k].size();
+        for (const auto& row : rows) width[k] = std::max(width[k], row[k].size());
+      }
+      fmt::print(out, "snapjump analyze: {} records (SI units: s, m, N, Pa)\n", rows.size());
+      for (std::size_t k = 0; k < shown; ++k) fmt::print(out, "{:<{}}  ", header[k], width[k]);
+      fmt::print(out, "\n");
+      for (const auto& row : rows) {
+        for (std::size_t k = 0; k < shown; ++k) {
+          fmt::print(out, "{:<{}}  ", row[k].empty() ? "-" : row[k], width[k]);
+        }
+        fmt::print(out, "\n");
+      }
+      for (const auto& r : results) {
+        if (!r.error.empty()) fmt::print(out, "  {}: error: {}\n", r.file, r.error);
+        if (r.analysis && !r.analysis->undetermined.empty()) {
+          fmt::print(out, "  {}: undetermined: {}\n", r.file, r.analysis->undetermined);
+        }
+      }
+    }
+  } else {
+    print_analysis_table(out, results.front(), c.has_value());
+  }
+  return failed ? kExitBadInput : kExitOk;
 }
 
 }  // namespace
@@ -290,21 +462,38 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       "onset (w/R < 0.03), r*, e*, F*, launch, t*, H, H_l, H_s, the outcome (docs/analysis.md).");
   AnalyzeOptions analyze_opts;
   analyze
-      ->add_option("series", analyze_opts.series,
-                   "CSV with columns t and F, and any of z, r, w, e, delta_p, contact; units "
-                   "in brackets, e.g. 't [ms]'")
+      ->add_option("records", analyze_opts.records,
+                   "CSV records (one or several) with columns t and F, and any of z, r, w, e, "
+                   "delta_p, contact; units in the header, e.g. 't [ms]' or 'Time (s)'")
       ->required()
       ->check(CLI::ExistingFile);
   analyze
       ->add_option("--case", analyze_opts.case_file,
                    "case file of the popper: gives R and the scales for the prefactors")
       ->check(CLI::ExistingFile);
-  analyze->add_option("--R", analyze_opts.R, "shell radius for the onset criterion w/R < 0.03");
+  analyze->add_option("--R", analyze_opts.R,
+                      "shell radius for the onset criterion w/R < 0.03, with its unit (30mm)");
   analyze->add_option("--force-threshold", analyze_opts.force_threshold,
                       "plate force below which the popper has left (default: 2% of F* or 4 "
                       "times the noise)");
-  analyze->add_option("--format", analyze_opts.format, "output: table or json")
-      ->check(CLI::IsMember({"table", "json"}));
+  analyze->add_option("--force-offset", analyze_opts.force_offset,
+                      "added to F before the analysis, e.g. 0.48N for a plate tared with the "
+                      "popper on it");
+  analyze->add_option("--settle-time", analyze_opts.settle_time,
+                      "how long a record must go on after the force peak (or after delta_p "
+                      "reached zero) to call it Snap (No snap); default 50ms");
+  analyze->add_flag("--complete", analyze_opts.complete,
+                    "the records cover the whole experiment: no onset is No snap, no launch Snap");
+  analyze->add_option("--column", analyze_opts.columns,
+                      "which header names a column, NAME=HEADER, e.g. --column t=\"Time (s)\" "
+                      "(repeatable)");
+  analyze->add_option("--unit", analyze_opts.units,
+                      "unit of a column whose header has none, NAME=UNIT, e.g. --unit F=mN "
+                      "(repeatable)");
+  analyze
+      ->add_option("--format", analyze_opts.format,
+                   "output: table, json or csv (one row per record)")
+      ->check(CLI::IsMember({"table", "json", "csv"}));
 
   auto* run_cmd = app.add_subcommand(
       "run",
@@ -353,7 +542,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   try {
     if (predict_cmd->parsed()) return predict(predict_opts, format, out);
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
-    if (analyze->parsed()) return analyze_cmd(analyze_opts, out);
+    if (analyze->parsed()) return analyze_cmd(analyze_opts, out, err);
     if (sweep_cmd.parsed()) return sweep_cmd.run(out, err);
     if (plot_cmd.parsed()) return plot_cmd.run(out, err);
     if (run_cmd->parsed()) {

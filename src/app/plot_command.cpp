@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <optional>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "app/cli.hpp"
@@ -50,6 +51,30 @@ std::vector<double> parse_times(const std::string& text) {
   return times;
 }
 
+// "450ms:560ms" -> seconds; bare numbers are seconds.
+std::pair<double, double> parse_window(const std::string& text) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) {
+    throw plot::PlotInputError(
+        fmt::format("--window '{}': write START:END, e.g. 450ms:560ms", text));
+  }
+  const units::UnitParser parser;
+  const auto one = [&](std::string_view item) {
+    try {
+      return parser.parse(trim(item), units::Dimension::Time);
+    } catch (const units::UnitError& e) {
+      throw plot::PlotInputError(fmt::format("--window: '{}': {}", trim(item), e.what()));
+    }
+  };
+  const double a = one(std::string_view(text).substr(0, colon));
+  const double b = one(std::string_view(text).substr(colon + 1));
+  if (!(b > a)) {
+    throw plot::PlotInputError(
+        fmt::format("--window '{}': the end must come after the start", text));
+  }
+  return {a, b};
+}
+
 plot::FigureOptions figure_options(const std::string& format, const std::string& output) {
   plot::FigureOptions o;
   o.output = output;
@@ -57,6 +82,10 @@ plot::FigureOptions figure_options(const std::string& format, const std::string&
   if (!output.empty()) {
     auto ext = fs::path(output).extension().string();
     if (!ext.empty()) from_extension = plot::parse_format(ext.substr(1));
+    if (!from_extension) {
+      throw plot::PlotInputError(fmt::format(
+          "--output {}: snapjump draws png or svg; name the file .png or .svg", output));
+    }
   }
   if (!format.empty()) {
     const auto f = plot::parse_format(format);
@@ -104,6 +133,19 @@ PlotCommand::PlotCommand(CLI::App& app) {
       "pressure difference delta_p against time, from RUN_DIR/series.csv (onset and launch "
       "marked from summary.json). Default output RUN_DIR/figures/series.png.");
   series_->add_option("run_dir", input_, "a folder written by `snapjump run`")->required();
+  series_
+      ->add_option("--experiment", experiment_,
+                   "a measured record (CSV, as `snapjump analyze` reads it) drawn solid beside "
+                   "the run (dashed); default output RUN_DIR/figures/series-experiment.png")
+      ->check(CLI::ExistingFile);
+  series_->add_option("--window", window_,
+                      "the time window drawn, START:END after the release (the run's clock), "
+                      "e.g. 450ms:560ms");
+  series_
+      ->add_option("--align", align_,
+                   "with --experiment: shift the record so that its onset falls on the run's "
+                   "(onset, the default) or draw both from the release (release)")
+      ->check(CLI::IsMember({"onset", "release"}));
   add_common(*series_, format_, output_);
 
   sections_ = plot_->add_subcommand(
@@ -146,7 +188,11 @@ int PlotCommand::run(std::ostream& out, std::ostream& err) const {
     const auto options = figure_options(format_, output_);
     plot::FigureResult r;
     if (series_->parsed()) {
-      r = plot::plot_series(input_, options);
+      plot::SeriesFigureOptions so;
+      so.experiment = experiment_;
+      if (!window_.empty()) so.window = parse_window(window_);
+      so.align_at_release = align_ == "release";
+      r = plot::plot_series(input_, options, so);
     } else if (sections_->parsed()) {
       r = plot::plot_sections(input_, parse_times(times_), options);
     } else if (sweep_->parsed()) {

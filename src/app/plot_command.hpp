@@ -43,6 +43,9 @@ class PlotCommand {
   std::string output_;
   std::string times_;
   std::string figure_;
+  std::string experiment_;  // plot series: a measured record drawn beside the run
+  std::string window_;      // plot series: "450ms:560ms"
+  std::string align_ = "onset";
 };
 
 }  // namespace snapjump::app

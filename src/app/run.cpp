@@ -6,6 +6,7 @@
 #include <sys/prctl.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -55,6 +56,15 @@ fs::path make_output_folder(const config::Case& c, const std::string& requested)
   std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tm);
   std::string stem =
       c.source == "built-in default case" ? "default" : fs::path(c.source).stem().string();
+  // Values changed by flags go into the name (h2mm, mu0.6), so that the folder does not name
+  // the case file's popper alone.
+  for (const auto& [key, text] : c.overridden) {
+    std::string part = key.substr(key.find('.') + 1);
+    for (const char ch : text) {
+      if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '-') part += ch;
+    }
+    if (stem.size() + part.size() < 80) stem += "-" + part;
+  }
   fs::path p = fs::path("runs") / fmt::format("{}-{}", stem, stamp);
   for (int k = 2; fs::exists(p); ++k)
     p = fs::path("runs") / fmt::format("{}-{}-{}", stem, stamp, k);
@@ -119,6 +129,7 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   };
   fmt::print(out, "  status      {}\n  outcome     {} (theory: {})\n", status,
              measure::outcome_text(analysis.outcome), prediction.outcome.text());
+  if (!analysis.undetermined.empty()) fmt::print(out, "              {}\n", analysis.undetermined);
   show("r*  contact radius", analysis.r_star, 1e-3, "mm", range(prediction.r_star, 1e-3));
   show("e*  indentation", analysis.e_star, 1e-3, "mm", range(prediction.e_star, 1e-3));
   show("F*  peak force of the snap", analysis.F_star, 1.0, "N", range(prediction.F_star, 1.0));

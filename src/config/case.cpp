@@ -468,7 +468,16 @@ Case parse_case(std::string_view toml_text, std::string_view source,
   Reader reader(source, *parser);
   reader.read_document(doc, c);
   for (const auto& o : overrides) reader.apply(o);
-  return build(reader, std::move(c));
+  auto built = build(reader, std::move(c));
+  std::vector<std::string> changed;
+  for (const auto& o : overrides) {
+    built.overridden.emplace_back(o.key, o.text);
+    changed.push_back(fmt::format("{} = {}", o.key, o.text));
+  }
+  if (!changed.empty() && !built.title.empty()) {
+    built.title += fmt::format(" [changed: {}]", fmt::join(changed, ", "));
+  }
+  return built;
 }
 
 Case load_case_file(const std::filesystem::path& path, std::span<const Override> overrides,

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "config/units.hpp"
@@ -99,6 +100,9 @@ struct Case {
   Numerics numerics;
   std::string source;                      // the file, or "built-in default case"
   std::vector<std::string> defaults_used;  // "material.nu = 0.45", one per defaulted key
+  // Values given outside the file (flags, a sweep's settings): {"shell.h", "2 mm"}. The title
+  // says so, so that a case file's title does not name a popper the flags have changed.
+  std::vector<std::pair<std::string, std::string>> overridden;
 };
 
 // Bad input. what() is the whole message, naming the key and where it was written.

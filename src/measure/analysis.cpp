@@ -128,6 +128,11 @@ void check_options(const AnalysisOptions& o) {
   if (o.force_threshold && !(*o.force_threshold > 0.0)) {
     throw bad("force_threshold", *o.force_threshold);
   }
+  if (!(o.settle_time >= 0.0) || !std::isfinite(o.force_offset)) {
+    throw SeriesError(fmt::format(
+        "analysis options: settle_time = {} must not be negative and force_offset = {} finite",
+        o.settle_time, o.force_offset));
+  }
   if (!(o.min_flight_time >= 0.0)) {
     throw SeriesError(fmt::format("analysis option min_flight_time = {} must not be negative",
                                   o.min_flight_time));
@@ -183,22 +188,17 @@ std::optional<std::size_t> find_onset(const TimeSeries& s, const AnalysisOptions
   return std::nullopt;
 }
 
-// The launch after the force peak at index `peak`: the first crossing below the threshold after
-// which F stays below it for min_flight_time (or to the end of the record).
-// Crossings are looked for up to the sample `last` (inclusive); F staying below is checked on the
-// whole record.
-void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak, std::size_t last,
-                 Analysis& a) {
-  const auto t = s.time();
-  const auto F = s.column(kForce);
-  const std::size_t n = t.size();
-  const double F_star = *a.F_star;
+// The noise of F: the robust spread over the final part of the record, counted only from the
+// first sample after the peak where F is below kQuiet F* (so that a record ending soon after the
+// launch does not count the falling flank as noise), and only if F is about zero there (in
+// flight). When the record goes on past a landing (F back on the weight at its end), the longest
+// stretch after the peak where F stays within kQuiet F* of zero (the flight) is used instead.
+constexpr double kQuiet = 0.1;
+constexpr std::size_t kMinNoiseSamples = 5;
 
-  // Noise: robust spread of F over the final part of the record, counted only from the first
-  // sample after the peak where F is below kQuiet F* (so that a record ending soon after the launch
-  // does not count the falling flank as noise), and only if F is about zero there (in flight).
-  constexpr double kQuiet = 0.1;
-  constexpr std::size_t kMinNoiseSamples = 5;
+void estimate_noise(std::span<const double> t, std::span<const double> F, const AnalysisOptions& o,
+                    std::size_t peak, double F_star, Analysis& a) {
+  const std::size_t n = t.size();
   const double t_from = t.back() - o.noise_window_fraction * (t.back() - t.front());
   std::size_t first = peak + 1;
   while (first < n && F[first] >= kQuiet * F_star) ++first;
@@ -206,46 +206,89 @@ void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak
   for (std::size_t i = first; i < n; ++i) {
     if (t[i] >= t_from) tail.push_back(F[i]);
   }
+  std::optional<double> median;
   if (tail.size() >= kMinNoiseSamples) {
     std::vector<double> sorted = tail;
     std::sort(sorted.begin(), sorted.end());
-    const double median = sorted[sorted.size() / 2];
-    if (std::abs(median) <= kQuiet * F_star) {
+    median = sorted[sorted.size() / 2];
+    if (std::abs(*median) <= kQuiet * F_star) {
       a.force_noise = robust_sigma(std::move(tail));
-    } else {
-      a.warnings.push_back(fmt::format(
-          "F is not near zero at the end of the record (median {} N): no noise estimate there, the "
-          "launch threshold is {} F* alone",
-          median, o.relative_threshold));
+      return;
     }
   }
-
-  if (o.force_threshold) {
-    a.force_threshold = *o.force_threshold;
-  } else {
-    a.force_threshold =
-        std::max(o.relative_threshold * F_star, o.noise_multiple * a.force_noise.value_or(0.0));
+  // The longest stretch after the peak with |F| < kQuiet F*.
+  std::size_t best_from = 0, best_len = 0;
+  for (std::size_t i = peak + 1; i < n;) {
+    if (std::abs(F[i]) >= kQuiet * F_star) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < n && std::abs(F[j]) < kQuiet * F_star) ++j;
+    if (j - i > best_len) {
+      best_from = i;
+      best_len = j - i;
+    }
+    i = j;
   }
-  const double level = *a.force_threshold;
-  if (level >= F_star) {
-    a.warnings.push_back(fmt::format(
-        "the launch threshold {} N is not below the force peak F* = {} N: no launch can be found",
-        level, F_star));
+  if (best_len >= kMinNoiseSamples) {
+    a.force_noise = robust_sigma(
+        std::vector<double>(F.begin() + static_cast<std::ptrdiff_t>(best_from),
+                            F.begin() + static_cast<std::ptrdiff_t>(best_from + best_len)));
     return;
   }
+  if (median) {
+    a.warnings.push_back(fmt::format(
+        "F is not near zero at the end of the record (median {} N) and never stays near zero "
+        "after the peak: no noise estimate, the launch threshold is {} F* alone",
+        *median, o.relative_threshold));
+  }
+}
 
-  for (std::size_t k = peak + 1; k < n && k <= last; ++k) {
-    if (F[k] >= level) continue;
-    // F[k - 1] >= level: the first sample of a candidate stretch below the threshold.
+double launch_level(const AnalysisOptions& o, double F_peak, const Analysis& a) {
+  if (o.force_threshold) return *o.force_threshold;
+  return std::max(o.relative_threshold * F_peak, o.noise_multiple * a.force_noise.value_or(0.0));
+}
+
+// The launch: from the window's first sample on, with the force peak so far as F*, the first
+// crossing of F below the threshold after that peak such that, for min_flight_time (or to the
+// end of the record), F stays below the larger of the threshold and kQuiet F* (a plate rings on
+// after the launch) and below the threshold on average, and, with a z column, the container is
+// higher at the end of that time than at the crossing. The snap ends there: a landing later in the
+// record, however hard, is not its force. Crossings are looked for up to the sample `last`
+// (inclusive); F staying below is checked on the whole record. Returns the peak before the launch
+// and sets t_launch, or returns nothing when there is no launch.
+std::optional<std::size_t> find_launch(const TimeSeries& s, const AnalysisOptions& o,
+                                       std::size_t first, std::size_t last, Analysis& a) {
+  const auto t = s.time();
+  const auto F = s.column(kForce);
+  const std::size_t n = t.size();
+  std::size_t peak = first;
+  for (std::size_t k = first + 1; k < n && k <= last; ++k) {
+    if (F[k] > F[peak]) {
+      peak = k;
+      continue;
+    }
+    const double level = launch_level(o, F[peak], a);
+    if (F[k] >= level || F[k - 1] < level || !(F[peak] > level)) continue;
+    // F[k - 1] >= level > F[k]: the first sample of a candidate stretch below the threshold.
     const double t_cross = crossing_time(t, F, k, level);
+    // In flight a plate rings on after the launch: F must stay below the larger of the threshold
+    // and kQuiet F* throughout, and below the threshold on average.
+    const double ceiling = std::max(level, kQuiet * F[peak]);
     std::size_t j = k;
     bool stays = true;
+    double sum = 0.0;
+    std::size_t count = 0;
     for (; j < n && t[j] <= t_cross + o.min_flight_time; ++j) {
-      if (F[j] >= level) {
+      if (F[j] >= ceiling) {
         stays = false;
         break;
       }
+      sum += F[j];
+      ++count;
     }
+    if (stays && count > 0 && sum / static_cast<double>(count) >= level) stays = false;
     if (stays && s.has(kHeight)) {
       // A launch leaves the plate going up. Contact lost while the container does not rise (the
       // suction pulling the everted shell back in as the popper settles) is not one.
@@ -258,22 +301,86 @@ void find_launch(const TimeSeries& s, const AnalysisOptions& o, std::size_t peak
             "F falls below the launch threshold at t = {:.6g} s while the container is not rising "
             "(z from {:.4g} to {:.4g} mm in the next {:.3g} ms): not a launch",
             t_cross, 1e3 * z_at, 1e3 * z_after, 1e3 * (t_after - t_cross)));
-        while (j < n && F[j] < level) ++j;
+        while (j < n && F[j] < ceiling) ++j;
         k = j;
         continue;
       }
     }
     if (stays) {
       a.t_launch = t_cross;
+      a.force_threshold = level;
       if (j == n && t.back() - t_cross < o.min_flight_time) {
         a.warnings.push_back(fmt::format(
             "the record ends {} ms after the launch, before F has stayed below the threshold "
             "for {} ms",
             1e3 * (t.back() - t_cross), 1e3 * o.min_flight_time));
       }
-      return;
+      return peak;
     }
     k = j;  // F[j] >= level; resume after it
+  }
+  return std::nullopt;
+}
+
+// The longest stretch of at least min_time where F < -level: a plate pushes and cannot pull, so a
+// sustained negative force says its zero is off (a tared plate). Returns (first, last) indices.
+std::optional<std::pair<std::size_t, std::size_t>> negative_stretch(std::span<const double> t,
+                                                                    std::span<const double> F,
+                                                                    double level, double min_time) {
+  std::optional<std::pair<std::size_t, std::size_t>> best;
+  double best_span = min_time;
+  for (std::size_t i = 0; i < F.size();) {
+    if (!(F[i] < -level)) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j + 1 < F.size() && F[j + 1] < -level) ++j;
+    if (t[j] - t[i] >= best_span) {
+      best = std::make_pair(i, j);
+      best_span = t[j] - t[i];
+    }
+    i = j + 1;
+  }
+  return best;
+}
+
+// A sustained negative force below this fraction of F's range (or the noise) says F's zero is off.
+constexpr double kTareFraction = 0.05;
+// Shell radii outside this range are not a popper's [m]: a bare number taken as metres.
+constexpr double kLargestPlausibleR = 1.0;
+constexpr double kSmallestPlausibleR = 1e-4;
+
+// No onset in the whole record: No snap is settled when the record covers the experiment
+// (options.complete) or goes on for settle_time after delta_p has come down to zero (the paper's
+// No snap: the rim stays on the plate even at delta_p = 0). Otherwise the reason goes into
+// a.undetermined.
+void no_snap_settled(const TimeSeries& s, const AnalysisOptions& o, Analysis& a) {
+  if (o.complete) return;
+  const auto t = s.time();
+  if (!s.has(kPressure)) {
+    a.undetermined = fmt::format(
+        "no onset within the record (to t = {:.6g} s), and without a delta_p column the analysis "
+        "cannot tell whether the suction was gone before it ended: the shell may still have "
+        "snapped (say the record is complete if it covers the whole experiment)",
+        t.back());
+    return;
+  }
+  const auto dp = s.column(kPressure);
+  const auto it = std::find_if(dp.begin(), dp.end(), [](double v) { return v <= 0.0; });
+  if (it == dp.end()) {
+    a.undetermined = fmt::format(
+        "no onset within the record, which ends at t = {:.6g} s with delta_p = {:.4g} Pa of "
+        "suction still holding the shell: it may still snap",
+        t.back(), dp.back());
+    return;
+  }
+  const double t_zero = t[static_cast<std::size_t>(it - dp.begin())];
+  if (t.back() - t_zero < o.settle_time) {
+    a.undetermined = fmt::format(
+        "no onset within the record, which ends {:.3g} ms after delta_p reached zero (at t = "
+        "{:.6g} s): the analysis waits {:.3g} ms (option settle_time) before calling it No snap",
+        1e3 * (t.back() - t_zero), t_zero, 1e3 * o.settle_time);
   }
 }
 
@@ -343,16 +450,36 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
         "analysis: the time series has no force column 'F' (the plate reaction); it has: {}",
         fmt::join(series.columns(), ", ")));
   }
+  if (series.empty()) {
+    throw SeriesError(
+        "analysis: the time series has no rows (a header alone?): nothing to analyse");
+  }
+  if (options.force_offset != 0.0) {
+    TimeSeries shifted = series;
+    shifted.add_to_column(kForce, options.force_offset);
+    AnalysisOptions rest = options;
+    rest.force_offset = 0.0;
+    auto a = analyze(shifted, rest, c);
+    a.warnings.insert(
+        a.warnings.begin(),
+        fmt::format("F is the record's force plus the offset {} N", options.force_offset));
+    return a;
+  }
   Analysis a;
+  for (const auto& note : series.notes()) a.warnings.push_back(fmt::format("reading: {}", note));
   a.R = options.R;
   if (!a.R && c != nullptr && c->shell.R > 0.0) a.R = c->shell.R;
-  if (series.empty()) {
-    a.warnings.push_back("the time series is empty");
-    return a;
+  if (a.R && (*a.R >= kLargestPlausibleR || *a.R < kSmallestPlausibleR)) {
+    a.warnings.push_back(fmt::format(
+        "R = {:.6g} m is not the radius of a popper's shell (a bare number is read in SI units, "
+        "metres: 30 means 30 m; write \"30 mm\")",
+        *a.R));
   }
   const auto t = series.time();
   const auto F = series.column(kForce);
   const std::size_t n = t.size();
+  std::optional<std::size_t> landing;  // the first sample back on the plate after the launch
+  bool snap_settled = false;
 
   const auto onset = find_onset(series, options, a);
   const bool can_tell = (series.has(kApexGap) && a.R) || series.has_contact();
@@ -360,6 +487,7 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     a.warnings.push_back(
         "no onset can be found: the series has neither a w column (with R) nor a contact column, "
         "so the outcome is undetermined");
+    a.undetermined = "no w column (with R) and no contact column: no onset can be found";
   }
 
   if (onset) {
@@ -389,16 +517,80 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
         }
       }
     }
+    // A contact column that says "none" for min_flight_time after the onset (or to the end of the
+    // record): the popper is off the plate, whatever F reads (a plate ringing, an offset); the
+    // snap's window ends there.
+    std::optional<std::size_t> contact_lost;
+    if (series.has_contact()) {
+      const auto cs = series.contact();
+      for (std::size_t i = *onset + 1; i <= last; ++i) {
+        if (cs[i] != ContactState::None) continue;
+        std::size_t j = i;
+        while (j + 1 < n && cs[j + 1] == ContactState::None) ++j;
+        if (j + 1 == n || t[j + 1] - t[i] >= options.min_flight_time) {
+          contact_lost = i;
+          last = i;
+          break;
+        }
+        i = j;
+      }
+    }
+    // The launch's crossing of the threshold may come up to min_flight_time after the contact
+    // is lost (the plate rings on).
+    std::size_t search_last = last;
+    if (contact_lost) {
+      while (search_last + 1 < n && t[search_last + 1] <= t[last] + options.min_flight_time) {
+        ++search_last;
+      }
+    }
     // The snap's force can rise, and even peak, before the apex criterion fires (a gradual
     // eversion): the window starts at the foot of the force's rise into the onset.
     // (When the onset lies on the falling flank of a peak, the rise to that peak.)
     const std::size_t first = rise_start(F, peak_behind(F, *onset)).index;
-    const auto peak = static_cast<std::size_t>(
+    const auto window_peak = static_cast<std::size_t>(
         std::max_element(F.begin() + static_cast<std::ptrdiff_t>(first),
                          F.begin() + static_cast<std::ptrdiff_t>(last) + 1) -
         F.begin());
+    std::size_t peak = window_peak;
+    if (F[window_peak] > 0.0) {
+      estimate_noise(t, F, options, window_peak, F[window_peak], a);
+      // The first launch ends the snap: the force peak is the largest before it (a landing later
+      // in the record is not the snap's force).
+      if (const auto p = find_launch(series, options, first, search_last, a)) {
+        peak = *p;
+        std::size_t k = peak + 1;
+        while (k < n && t[k] < *a.t_launch) ++k;
+        last = std::min(last, k);
+      } else if (contact_lost) {
+        a.t_launch = t[*contact_lost];
+        a.warnings.push_back(fmt::format(
+            "F does not stay below the launch threshold, but the contact column says the shell is "
+            "off the plate from t = {:.6g} s: the launch is taken from the contact column",
+            t[*contact_lost]));
+      }
+    } else {
+      a.warnings.push_back(fmt::format("F is never positive after the onset (peak {} N): no launch",
+                                       F[window_peak]));
+    }
     a.F_star = F[peak];
     a.t_F_star = t[peak];
+    a.force_threshold = launch_level(options, *a.F_star, a);
+    if (!a.t_launch && *a.F_star > 0.0 && *a.force_threshold >= *a.F_star) {
+      a.warnings.push_back(fmt::format(
+          "the launch threshold {} N is not below the force peak F* = {} N: no launch can be found",
+          *a.force_threshold, *a.F_star));
+    }
+    if (a.t_launch) {
+      // The landing: F back above the launch's ceiling (the threshold, or kQuiet F* above a
+      // ringing plate) after the flight.
+      const double ceiling = std::max(*a.force_threshold, kQuiet * *a.F_star);
+      std::size_t k = last;
+      while (k < n && (t[k] <= *a.t_launch + options.min_flight_time || F[k] < ceiling)) ++k;
+      if (k < n) {
+        a.t_landing = t[k];
+        landing = k;
+      }
+    }
     if (options.plate_frequency) {
       const auto plate = plate_response(t, F, *options.plate_frequency, options.plate_damping);
       // The plate lags: its peak may come up to a period after the raw window's end.
@@ -410,12 +602,6 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     }
     const auto rise = rise_start(F, peak);
     a.t_force_rise = rise.index < peak ? crossing_time(t, F, rise.index + 1, rise.level) : t[peak];
-    if (*a.F_star > 0.0) {
-      find_launch(series, options, peak, last, a);
-    } else {
-      a.warnings.push_back(
-          fmt::format("F is never positive after the onset (peak {} N): no launch", *a.F_star));
-    }
     // After a launch the apex rises with the popper (and a noisy F may be above 0): only without
     // one does the shell's return to a ring contact say something.
     if (ring_again && !a.t_launch) {
@@ -427,12 +613,24 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     if (a.t_launch) {
       a.t_star = *a.t_launch - t_on;
       a.t_star_rise = *a.t_launch - *a.t_force_rise;
+    } else if (ring_again) {
+      snap_settled = true;
+    } else if (options.complete || t.back() - *a.t_F_star >= options.settle_time) {
+      snap_settled = true;
+    } else {
+      a.undetermined = fmt::format(
+          "the record ends {:.3g} ms after the force peak, before the popper can be seen to leave "
+          "the plate or stay on it (the analysis waits {:.3g} ms, option settle_time; or say the "
+          "record is complete)",
+          1e3 * (t.back() - *a.t_F_star), 1e3 * options.settle_time);
     }
   }
 
   if (series.has(kHeight)) {
+    // The highest z of the first flight (up to the landing, when the record goes on past it).
     const auto z = series.column(kHeight);
-    const auto top = std::max_element(z.begin(), z.end());
+    const auto top = std::max_element(
+        z.begin(), landing ? z.begin() + static_cast<std::ptrdiff_t>(*landing) + 1 : z.end());
     a.H = *top;
     if (a.H_l) a.H_s = *a.H - *a.H_l;
     if (a.t_launch && static_cast<std::size_t>(top - z.begin()) == n - 1 &&
@@ -443,11 +641,60 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     }
   }
 
-  if (a.t_launch) {
+  if (!a.t_onset && can_tell) no_snap_settled(series, options, a);
+
+  // A value at the onset read from inside a sensor's dropout is an interpolation across it.
+  if (a.t_onset) {
+    for (const auto& g : series.gaps()) {
+      const bool used = g.column == kApexGap || g.column == kContactRadius ||
+                        g.column == kIndentation || g.column == kHeight ||
+                        g.column == kApexDisplacement;
+      if (used && *a.t_onset > g.from && *a.t_onset < g.to) {
+        a.warnings.push_back(fmt::format(
+            "the onset (t = {:.6g} s) falls inside the gap of column '{}' ({:.6g} .. {:.6g} s): "
+            "{} there is interpolated across the gap{}",
+            *a.t_onset, g.column, g.from, g.to, g.column,
+            g.column == kApexGap ? ", and so is the onset's time" : ""));
+      }
+    }
+  }
+
+  // A plate pushes and cannot pull: F held below zero says its zero is off (tared with the popper
+  // standing on it, or offset), and then neither F* nor the launch threshold nor the outcome can be
+  // trusted.
+  {
+    const double range =
+        *std::max_element(F.begin(), F.end()) - *std::min_element(F.begin(), F.end());
+    const double level =
+        std::max(kTareFraction * range, options.noise_multiple * a.force_noise.value_or(0.0));
+    if (const auto neg = negative_stretch(t, F, level, options.min_flight_time)) {
+      std::vector<double> part(F.begin() + static_cast<std::ptrdiff_t>(neg->first),
+                               F.begin() + static_cast<std::ptrdiff_t>(neg->second) + 1);
+      std::nth_element(part.begin(), part.begin() + static_cast<std::ptrdiff_t>(part.size() / 2),
+                       part.end());
+      const double median = part[part.size() / 2];
+      std::string hint;
+      if (c != nullptr && c->popper.net_weight > 0.0) {
+        hint = fmt::format(" (the case's net weight is {:.4g} N)", c->popper.net_weight);
+      }
+      a.warnings.push_back(fmt::format(
+          "F stays below zero (median {:.4g} N) for {:.3g} ms from t = {:.6g} s: a plate pushes "
+          "and "
+          "cannot pull, so the record looks tared or offset (the popper's weight subtracted?). F*, "
+          "the launch and the outcome need F about 0 in flight: add the offset back (force_offset, "
+          "--force-offset){}",
+          median, 1e3 * (t[neg->second] - t[neg->first]), t[neg->first], hint));
+      a.undetermined = "F's zero is off (the record looks tared): the force cannot tell a launch";
+    }
+  }
+
+  if (!a.undetermined.empty()) {
+    // an outcome the record cannot settle
+  } else if (a.t_launch) {
     a.outcome = theory::Outcome::Jump;
-  } else if (a.t_onset) {
+  } else if (a.t_onset && snap_settled) {
     a.outcome = theory::Outcome::Snap;
-  } else if (can_tell) {
+  } else if (!a.t_onset && can_tell) {
     a.outcome = theory::Outcome::NoSnap;
   }
 
@@ -512,6 +759,7 @@ nlohmann::json to_json(const Analysis& a) {
       {"e_apex_star", a.e_apex_star, "m", "apex displacement at the onset (e* + w)"},
       {"t_force_rise", a.t_force_rise, "s", "foot of the force's rise to F*"},
       {"t_star_rise", a.t_star_rise, "s", "force rise to launch"},
+      {"t_landing", a.t_landing, "s", "first sample back on the plate after the flight"},
       {"alpha_r", a.alpha_r, "1", "r* / sqrt(h R)"},
       {"alpha_e", a.alpha_e, "1", "e* / h"},
       {"alpha_F", a.alpha_F, "1", "F* / (E h^3 / R)"},
@@ -529,6 +777,7 @@ nlohmann::json to_json(const Analysis& a) {
   return json{
       {"units", "SI"},
       {"outcome", a.outcome ? json(theory::to_string(*a.outcome)) : json(nullptr)},
+      {"undetermined", a.undetermined.empty() ? json(nullptr) : json(a.undetermined)},
       {"onset_source",
        a.onset_source == OnsetSource::None ? json(nullptr) : json(to_string(a.onset_source))},
       {"quantities", quantities},

@@ -36,6 +36,15 @@ struct AnalysisOptions {
   // simulated series (the paper's plate: 170 Hz); a measured record has been through its plate.
   std::optional<double> plate_frequency;
   double plate_damping = 0.7;  // an assumption: the paper gives the frequency only
+  // How long the record must go on, after the force peak, before a snap without a launch is
+  // called Snap, and, after delta_p has reached zero, before no onset is called No snap [s].
+  // Shorter records get no outcome ("undetermined", with the reason).
+  double settle_time = 50e-3;
+  // The record covers the whole experiment: no onset is No snap and no launch Snap, whenever
+  // the record ends.
+  bool complete = false;
+  // Added to F before the analysis [N]: the net weight, for a plate tared with the popper on it.
+  double force_offset = 0.0;
 };
 
 // F(t) through a second-order low-pass of resonant frequency f [Hz], damping ratio zeta and unit
@@ -75,6 +84,8 @@ struct Analysis {
   std::optional<double> t_launch;         // [s]
   std::optional<double> t_star;           // t_launch - t_onset [s]
   std::optional<double> t_star_rise;      // t_launch - t_force_rise [s]
+  // The first sample back on the plate after the launch, when the record goes on that long [s].
+  std::optional<double> t_landing;
   // Heights of the container.
   std::optional<double> H;    // max z [m]
   std::optional<double> H_l;  // z at the onset [m]
@@ -85,6 +96,9 @@ struct Analysis {
   // Jump if launched, Snap if onset without launch, No snap if no onset; absent when the series
   // cannot tell (no w column or R, and no contact column).
   std::optional<theory::Outcome> outcome;
+  // Why there is no outcome, when the series could have had one (a record that ends before the
+  // question is settled, a plate whose zero is off); empty otherwise.
+  std::string undetermined;
   // With a case: measured prefactors and scaled quantities.
   std::optional<double> alpha_r;        // r* / sqrt(h R)
   std::optional<double> alpha_e;        // e* / h
@@ -107,7 +121,8 @@ std::string_view to_string(OnsetSource s);  // "none", "w/R", "contact=disk"
 std::string outcome_text(const std::optional<theory::Outcome>& o);
 
 // Analyses a series with columns t and F (required), and w, r, e, z, contact when present.
-// Throws SeriesError when t or F is missing or the options make no sense (R <= 0, ...).
+// Throws SeriesError when t or F is missing, the series has no rows, or the options make no sense
+// (R <= 0, ...).
 Analysis analyze(const TimeSeries& series, const AnalysisOptions& options = {},
                  const config::Case* c = nullptr);
 

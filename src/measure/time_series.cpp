@@ -131,89 +131,6 @@ void append_row(fmt::memory_buffer& buf, std::span<const double> values,
   buf.push_back('\n');
 }
 
-std::optional<double> parse_number(std::string_view cell) {
-  auto s = trim(cell);
-  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
-  if (s.empty()) return std::nullopt;
-  double value = 0.0;
-  const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), value);
-  if (ec != std::errc() || ptr != s.data() + s.size() || !std::isfinite(value)) return std::nullopt;
-  return value;
-}
-
-void split(std::string_view line, std::vector<std::string_view>& cells) {
-  cells.clear();
-  std::size_t start = 0;
-  while (true) {
-    const auto comma = line.find(',', start);
-    if (comma == std::string_view::npos) {
-      cells.push_back(line.substr(start));
-      return;
-    }
-    cells.push_back(line.substr(start, comma - start));
-    start = comma + 1;
-  }
-}
-
-bool is_comment_or_blank(std::string_view line) {
-  const auto s = trim(line);
-  return s.empty() || s.front() == '#';
-}
-
-// One header cell: the column's name, its unit text (if bracketed) and the factor to SI.
-struct HeaderColumn {
-  std::string text;  // as written, trimmed
-  std::string name;  // what the series calls it
-  double to_si = 1.0;
-  bool is_contact = false;
-};
-
-HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::size_t k,
-                               const units::UnitParser& parser) {
-  HeaderColumn c;
-  c.text = std::string(trim(cell));
-  const auto fail = [&](std::string_view why) {
-    return SeriesError(fmt::format("{}: column {} '{}': {}", at, k, c.text, why));
-  };
-  std::string_view name = c.text;
-  std::optional<std::string_view> unit;
-  const auto open = c.text.find('[');
-  const auto close = c.text.find(']');
-  if (open != std::string::npos || close != std::string::npos) {
-    if (open == std::string::npos || close == std::string::npos || close < open) {
-      throw fail("unbalanced brackets; write the unit as \"name [unit]\", e.g. \"t [ms]\"");
-    }
-    if (!trim(std::string_view(c.text).substr(close + 1)).empty()) {
-      throw fail("text after the ']'; write the unit as \"name [unit]\", e.g. \"t [ms]\"");
-    }
-    name = trim(std::string_view(c.text).substr(0, open));
-    unit = trim(std::string_view(c.text).substr(open + 1, close - open - 1));
-  }
-  if (name.empty()) throw fail("the column has no name");
-  if (name == kContact) {
-    if (unit && !unit->empty()) throw fail("the contact column holds text and takes no unit");
-    c.name = std::string(name);
-    c.is_contact = true;
-    return c;
-  }
-  const auto dim = column_dimension(name);
-  if (!dim) {
-    // Not a known quantity: kept as written (unit and all), values unconverted.
-    c.name = c.text;
-    return c;
-  }
-  c.name = std::string(name);
-  if (unit) {
-    try {
-      c.to_si = parser.to_si(1.0, *unit, *dim);
-    } catch (const units::UnitError& e) {
-      throw fail(fmt::format("{} (column '{}' is a {} in {})", e.what(), name,
-                             units::dimension_name(*dim), units::si_unit(*dim)));
-    }
-  }
-  return c;
-}
-
 }  // namespace
 
 std::string_view to_string(ContactState s) {
@@ -270,6 +187,13 @@ std::span<const double> TimeSeries::column(std::string_view name) const {
   return data_[*i];
 }
 
+void TimeSeries::add_to_column(std::string_view name, double offset) {
+  const auto i = index(name);
+  if (!i) throw SeriesError(fmt::format("the time series has no column '{}'", name));
+  if (*i == time_index_) throw SeriesError("the time column cannot be shifted");
+  for (auto& v : data_[*i]) v += offset;
+}
+
 void TimeSeries::reserve(std::size_t rows) {
   for (auto& d : data_) d.reserve(rows);
   if (with_contact_) contact_.reserve(rows);
@@ -302,124 +226,6 @@ void TimeSeries::write_csv(std::ostream& out) const {
     }
   }
   out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
-}
-
-TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
-                                const units::UnitParser& parser) {
-  std::string line;
-  std::size_t line_no = 0;
-  const auto at = [&] { return fmt::format("{}:{}", source, line_no); };
-
-  // The header: the first line that is not a comment or blank.
-  bool have_header = false;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);  // UTF-8 BOM
-    if (!is_comment_or_blank(line)) {
-      have_header = true;
-      break;
-    }
-  }
-  if (!have_header) {
-    throw SeriesError(fmt::format(
-        "{}: no header line; the first line that is not a '#' comment names the columns, e.g. "
-        "\"t [ms],F [N],z [mm]\"",
-        source));
-  }
-
-  std::vector<std::string_view> cells;
-  split(line, cells);
-  std::vector<HeaderColumn> header;
-  header.reserve(cells.size());
-  std::optional<std::size_t> contact_col;
-  for (std::size_t k = 0; k < cells.size(); ++k) {
-    auto c = parse_header_cell(cells[k], at(), k + 1, parser);
-    for (std::size_t j = 0; j < header.size(); ++j) {
-      if (header[j].name == c.name) {
-        throw SeriesError(fmt::format("{}: column {} '{}': the name '{}' is also column {}", at(),
-                                      k + 1, c.text, c.name, j + 1));
-      }
-    }
-    if (c.is_contact) contact_col = k;
-    header.push_back(std::move(c));
-  }
-  const auto require = [&](std::string_view name, std::string_view what) {
-    for (const auto& h : header) {
-      if (h.name == name) return;
-    }
-    std::vector<std::string_view> have;
-    for (const auto& h : header) have.push_back(h.text);
-    throw SeriesError(fmt::format("{}: the header has no '{}' column ({}, required); it has: {}",
-                                  at(), name, what, fmt::join(have, ", ")));
-  };
-  require(kTime, "time");
-  require(kForce, "the plate reaction force");
-
-  std::vector<std::string> names;
-  std::vector<std::size_t> numeric_cols;  // header position of each numeric column
-  std::size_t time_col = 0;
-  for (std::size_t k = 0; k < header.size(); ++k) {
-    if (header[k].is_contact) continue;
-    if (header[k].name == kTime) time_col = k;
-    names.push_back(header[k].name);
-    numeric_cols.push_back(k);
-  }
-  TimeSeries series(std::move(names), contact_col.has_value());
-
-  std::vector<double> values(numeric_cols.size());
-  std::optional<double> last_time;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (is_comment_or_blank(line)) continue;
-    split(line, cells);
-    if (cells.size() < header.size()) {
-      throw SeriesError(fmt::format(
-          "{}: {} cells, but the header has {} columns (column {} '{}' is missing)", at(),
-          cells.size(), header.size(), cells.size() + 1, header[cells.size()].text));
-    }
-    if (cells.size() > header.size()) {
-      throw SeriesError(fmt::format("{}: {} cells, but the header has only {} columns", at(),
-                                    cells.size(), header.size()));
-    }
-    for (std::size_t i = 0; i < numeric_cols.size(); ++i) {
-      const auto k = numeric_cols[i];
-      const auto v = parse_number(cells[k]);
-      if (!v) {
-        throw SeriesError(fmt::format("{}: column {} '{}': '{}' is not a finite number", at(),
-                                      k + 1, header[k].text, trim(cells[k])));
-      }
-      values[i] = *v * header[k].to_si;
-    }
-    std::optional<ContactState> state;
-    if (contact_col) {
-      state = parse_contact_state(cells[*contact_col]);
-      if (!state) {
-        throw SeriesError(
-            fmt::format("{}: column {} 'contact': '{}' is not a contact state (none, ring or disk)",
-                        at(), *contact_col + 1, trim(cells[*contact_col])));
-      }
-    }
-    const double t = values[series.time_index_];
-    if (last_time && !(t > *last_time)) {
-      throw SeriesError(fmt::format(
-          "{}: column {} '{}': time {} s is not after the previous row's {} s (time must increase "
-          "from row to row)",
-          at(), time_col + 1, header[time_col].text, t, *last_time));
-    }
-    last_time = t;
-    series.append(values, state);
-  }
-  if (in.bad()) throw SeriesError(fmt::format("{}: read error after line {}", source, line_no));
-  return series;
-}
-
-TimeSeries TimeSeries::read_csv_file(const std::filesystem::path& path,
-                                     const units::UnitParser* parser) {
-  std::ifstream in(path);
-  if (!in) throw SeriesError(fmt::format("{}: cannot open the file", path.string()));
-  if (parser != nullptr) return read_csv(in, path.string(), *parser);
-  const units::UnitParser own;
-  return read_csv(in, path.string(), own);
 }
 
 // --- CsvWriter -------------------------------------------------------------------------------

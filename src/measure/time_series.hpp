@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "config/units.hpp"
@@ -52,6 +53,21 @@ inline constexpr std::string_view kContact = "contact";          // text: none /
 // The dimension of a known numeric column, or nothing for "contact" and unknown names.
 std::optional<units::Dimension> column_dimension(std::string_view name);
 
+// How to read a record that does not follow the project's own spelling (docs/analysis.md).
+struct ReadOptions {
+  // Which header names which column: {"t", "Time (s)"} reads the column headed "Time (s)" as t.
+  std::vector<std::pair<std::string, std::string>> columns;
+  // Units for columns whose header gives none: {"F", "mN"}.
+  std::vector<std::pair<std::string, std::string>> units;
+};
+
+// A stretch where one column has no samples (a sensor's dropout), interpolated across.
+struct Gap {
+  std::string column;
+  double from = 0.0;  // last sample before [s]
+  double to = 0.0;    // first sample after [s]
+};
+
 class TimeSeries {
  public:
   // An empty series with these numeric columns (in this order; one must be "t"; no duplicates,
@@ -74,6 +90,9 @@ class TimeSeries {
   [[nodiscard]] std::span<const ContactState> contact() const { return contact_; }
 
   void reserve(std::size_t rows);
+  // Adds `offset` to every value of a numeric column (a force plate's tare put back). Throws
+  // SeriesError naming a missing column, or for the time column.
+  void add_to_column(std::string_view name, double offset);
   // Appends one row: one value per numeric column, in the order of columns(); the contact state
   // when the series has a contact column (and only then). Throws SeriesError on a wrong number of
   // values, a missing or unexpected contact state, or a time that is not finite or not after the
@@ -92,11 +111,18 @@ class TimeSeries {
   void write_csv(std::ostream& out) const;
 
   // Reads CSV text; `source` names it in messages (a file name). Throws SeriesError.
+  // (src/measure/record_reader.cpp)
   static TimeSeries read_csv(std::istream& in, std::string_view source,
-                             const units::UnitParser& parser);
+                             const units::UnitParser& parser, const ReadOptions& options = {});
   // Reads a CSV file; makes its own UnitParser when none is given. Throws SeriesError.
   static TimeSeries read_csv_file(const std::filesystem::path& path,
-                                  const units::UnitParser* parser = nullptr);
+                                  const units::UnitParser* parser = nullptr,
+                                  const ReadOptions& options = {});
+
+  // What reading did to the record (rows sorted, columns resampled, cut or left out), in words.
+  [[nodiscard]] const std::vector<std::string>& notes() const { return notes_; }
+  // The stretches where a column had no samples (interpolated across).
+  [[nodiscard]] const std::vector<Gap>& gaps() const { return gaps_; }
 
  private:
   void append(std::span<const double> values, std::optional<ContactState> contact);
@@ -106,6 +132,8 @@ class TimeSeries {
   std::vector<ContactState> contact_;
   std::size_t time_index_ = 0;
   bool with_contact_ = false;
+  std::vector<std::string> notes_;
+  std::vector<Gap> gaps_;
 };
 
 // Appends rows to a CSV file (or stream) as they come and flushes after each, so that a run that

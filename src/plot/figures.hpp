@@ -11,14 +11,28 @@
 #include <optional>
 #include <span>
 #include <string_view>
+#include <utility>
 
 #include "plot/gnuplot.hpp"
 
 namespace snapjump::plot {
 
+// What plot_series draws besides the run.
+struct SeriesFigureOptions {
+  // A measured record (the reader's formats, docs/analysis.md) drawn solid, the run dashed;
+  // panels the record has no column of are left out. Empty: the run alone.
+  std::filesystem::path experiment;
+  // The time window drawn [s, the run's clock]; the whole run (and record) when absent.
+  std::optional<std::pair<double, double>> window;
+  // The record is shifted so that its onset falls on the run's; with this, not shifted (both
+  // clocks start at the release, as the valve opens).
+  bool align_at_release = false;
+};
+
 // RUN_DIR/series.csv (and RUN_DIR/summary.json when present); default image
-// RUN_DIR/figures/series.png.
-FigureResult plot_series(const std::filesystem::path& run_dir, const FigureOptions& options);
+// RUN_DIR/figures/series.png (series-experiment.png with a record).
+FigureResult plot_series(const std::filesystem::path& run_dir, const FigureOptions& options,
+                         const SeriesFigureOptions& series_options = {});
 
 // The snapshot of RUN_DIR/run.pvd nearest each time [s]; default image
 // RUN_DIR/figures/sections.png.

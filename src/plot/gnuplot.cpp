@@ -61,8 +61,10 @@ std::optional<Format> parse_format(std::string_view text) {
 FigureResult figure_paths(const FigureOptions& options, const fs::path& default_path) {
   FigureResult r;
   if (options.output.empty()) {
+    // Appended, not replaced: a default named after "b-nu0.45.csv" is "b-nu0.45", whose ".45"
+    // is not an extension.
     r.figure = default_path;
-    r.figure.replace_extension(extension(options.format));
+    r.figure += fmt::format(".{}", extension(options.format));
   } else {
     r.figure = options.output;
   }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
+#include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
 #include "plot/figures.hpp"
 #include "plot/snapshots.hpp"
@@ -113,7 +114,31 @@ std::vector<Interval> contact_intervals(const measure::TimeSeries& s) {
 
 }  // namespace
 
-FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options) {
+namespace {
+
+// The run's R [m] from summary.json's case, for the experiment's onset (w / R).
+std::optional<double> summary_radius(const json& summary) {
+  if (!summary.is_object()) return std::nullopt;
+  const auto c = summary.find("case");
+  if (c == summary.end() || !c->is_object()) return std::nullopt;
+  const auto R = c->find("R");
+  if (R == c->end() || !R->is_number()) return std::nullopt;
+  const double v = R->get<double>();
+  return v > 0.0 && std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
+}
+
+// One panel of the figure: its columns (names in the series), label and colours.
+struct Panel {
+  std::vector<const char*> columns;
+  std::vector<const char*> titles;
+  std::vector<std::string_view> colours;
+  std::string ylabel;
+};
+
+}  // namespace
+
+FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
+                         const SeriesFigureOptions& series_options) {
   require_run_folder(run_dir);
   const auto csv = run_dir / "series.csv";
   std::error_code ec;
@@ -121,7 +146,9 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options) 
     throw PlotInputError(
         fmt::format("{}: no such file (the time series that `snapjump run` writes)", csv.string()));
   }
-  auto result = figure_paths(options, run_dir / "figures" / "series");
+  const bool with_experiment = !series_options.experiment.empty();
+  auto result = figure_paths(
+      options, run_dir / "figures" / (with_experiment ? "series-experiment" : "series"));
   auto& notes = result.notes;
   std::optional<measure::TimeSeries> read;
   try {
@@ -148,44 +175,124 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options) 
   const auto summary = read_summary(run_dir / "summary.json", notes);
   const auto t = s.time();
   const auto z = s.column("z");
-  const auto r = s.column("r");
-  const auto w = s.column("w");
-  const auto F = s.column("F");
-  const auto dp = s.column("delta_p");
   double dp_max = 0.0;
-  for (const double v : dp) dp_max = std::max(dp_max, std::abs(v));
+  for (const double v : s.column("delta_p")) dp_max = std::max(dp_max, std::abs(v));
+
+  // The experiment, on the run's clock: shifted so that its onset falls on the run's (or not
+  // shifted: both clocks start at the release).
+  std::optional<measure::TimeSeries> experiment;
+  double shift = 0.0;  // added to the experiment's times [s]
+  if (with_experiment) {
+    try {
+      experiment.emplace(measure::TimeSeries::read_csv_file(series_options.experiment));
+    } catch (const measure::SeriesError& e) {
+      throw PlotInputError(e.what());
+    }
+    if (experiment->empty()) {
+      throw PlotInputError(
+          fmt::format("{}: the record has no rows", series_options.experiment.string()));
+    }
+    for (const auto& note : experiment->notes()) notes.push_back(fmt::format("record: {}", note));
+    if (experiment->has("delta_p")) {
+      for (const double v : experiment->column("delta_p")) dp_max = std::max(dp_max, std::abs(v));
+    }
+    if (!series_options.align_at_release) {
+      const auto t_run = measured(summary, "t_onset");
+      measure::AnalysisOptions ao;
+      ao.R = summary_radius(summary);
+      std::optional<double> t_exp;
+      try {
+        t_exp = measure::analyze(*experiment, ao).t_onset;
+      } catch (const measure::SeriesError& e) {
+        notes.push_back(fmt::format("the record's onset could not be found: {}", e.what()));
+      }
+      if (t_run && t_exp) {
+        shift = *t_run - *t_exp;
+        notes.push_back(
+            fmt::format("aligned at the onset: the record's {:.6g} s drawn at the run's {:.6g} s",
+                        *t_exp, *t_run));
+      } else {
+        notes.push_back(fmt::format(
+            "aligned at the release: no onset in the {} (w with the run's R, or a contact column)",
+            t_run ? "record" : "run's summary"));
+      }
+    }
+  }
   const bool kpa = dp_max >= 2000.0;
   const double dp_scale = kpa ? 1e-3 : 1.0;
 
-  // Very long records are thinned for the script (every k-th row; the extremes of F are kept).
-  const std::size_t limit = 40000;
-  const std::size_t stride = s.size() > limit ? (s.size() + limit - 1) / limit : 1;
-  std::size_t i_fmax = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (F[i] > F[i_fmax]) i_fmax = i;
+  // The window drawn [s, on the run's clock].
+  double w0 = t.front(), w1 = t.back();
+  if (series_options.window) {
+    w0 = series_options.window->first;
+    w1 = series_options.window->second;
+    if (!(w1 > w0)) {
+      throw PlotInputError(
+          fmt::format("--window {:.6g}s:{:.6g}s: the end must come after the start", w0, w1));
+    }
+  } else if (experiment) {
+    w0 = std::min(w0, experiment->time().front() + shift);
+    w1 = std::max(w1, experiment->time().back() + shift);
   }
-  std::vector<std::vector<double>> rows;
-  rows.reserve(s.size() / stride + 2);
-  for (std::size_t i = 0; i < s.size(); ++i) {
-    if (i % stride != 0 && i != i_fmax && i + 1 != s.size()) continue;
-    rows.push_back({t[i] * 1e3, z[i] * 1e3, r[i] * 1e3, w[i] * 1e3, F[i], dp[i] * dp_scale});
-  }
-  if (stride > 1) {
-    notes.push_back(fmt::format("{} rows: every {}th is drawn", s.size(), stride));
-  }
-  const double t0 = t.front() * 1e3;
-  const double t1 = std::max(t.back() * 1e3, t0 + 1e-6);
+
+  // Rows of a series inside the window (with the sample on either side), thinned to `limit`
+  // (every k-th row; the largest F is kept), in the script's units.
+  const auto rows_of = [&](const measure::TimeSeries& series, double dt, const char* what) {
+    const auto ts = series.time();
+    const char* names[] = {"z", "r", "w", "F", "delta_p"};
+    const double scale[] = {1e3, 1e3, 1e3, 1.0, dp_scale};
+    std::size_t from = 0, to = ts.size();
+    while (from + 1 < ts.size() && ts[from + 1] + dt <= w0) ++from;
+    while (to > from + 1 && ts[to - 2] + dt >= w1) --to;
+    const std::size_t count = to - from;
+    const std::size_t limit = 40000;
+    const std::size_t stride = count > limit ? (count + limit - 1) / limit : 1;
+    std::size_t i_fmax = from;
+    if (series.has("F")) {
+      const auto f = series.column("F");
+      for (std::size_t i = from; i < to; ++i) {
+        if (f[i] > f[i_fmax]) i_fmax = i;
+      }
+    }
+    std::vector<std::vector<double>> rows;
+    for (std::size_t i = from; i < to; ++i) {
+      if ((i - from) % stride != 0 && i != i_fmax && i + 1 != to) continue;
+      std::vector<double> row{(ts[i] + dt) * 1e3};
+      for (std::size_t k = 0; k < 5; ++k) {
+        row.push_back(series.has(names[k]) ? series.column(names[k])[i] * scale[k]
+                                           : std::numeric_limits<double>::quiet_NaN());
+      }
+      rows.push_back(std::move(row));
+    }
+    if (stride > 1) notes.push_back(fmt::format("{}: every {}th row is drawn", what, stride));
+    if (rows.empty()) notes.push_back(fmt::format("{}: no rows inside the window", what));
+    return rows;
+  };
 
   std::string gp;
   gp += fmt::format(
-      "# Fig. 2(a) of the paper: the time series of one run, from {}.\n"
+      "# Fig. 2(a) of the paper: the time series of one run, from {}{}.\n"
       "# Written by `snapjump plot series`; edit and redraw with `gnuplot {}` in this folder.\n"
       "# Units: t in ms, z r w in mm, F in N, delta_p in {}.\n",
-      printable(csv.string()), printable(result.script.filename().string()), kpa ? "kPa" : "Pa");
+      printable(csv.string()),
+      experiment ? fmt::format(", and the record {}", printable(series_options.experiment.string()))
+                 : std::string(),
+      printable(result.script.filename().string()), kpa ? "kPa" : "Pa");
   gp += terminal(options.format, 1200, 1000, result.figure, 14);
-  gp += datablock(
-      "series",
-      fmt::format("t [ms]  z [mm]  r [mm]  w [mm]  F [N]  delta_p [{}]", kpa ? "kPa" : "Pa"), rows);
+  const std::string columns =
+      fmt::format("t [ms]  z [mm]  r [mm]  w [mm]  F [N]  delta_p [{}]", kpa ? "kPa" : "Pa");
+  gp += datablock("series", columns, rows_of(s, 0.0, "run"));
+  if (experiment) {
+    // A record may have fewer columns than the run: those hold 0 in its datablock and are never
+    // drawn (a non-finite value would blank the whole row).
+    auto rows = rows_of(*experiment, shift, "record");
+    for (auto& row : rows) {
+      for (auto& v : row) {
+        if (!std::isfinite(v)) v = 0.0;
+      }
+    }
+    gp += datablock("experiment", columns, rows);
+  }
 
   // Marks shared by every panel: contact states shaded, onset and launch as vertical lines.
   const auto intervals = contact_intervals(s);
@@ -226,75 +333,111 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options) 
   const auto title = summary_title(summary);
   gp += fmt::format("set multiplot title {} noenhanced\n",
                     quote(title.empty() ? run_dir.filename().string() : title));
-  gp += fmt::format("set xrange [{}:{}]\n", number(t0), number(t1));
+  gp +=
+      fmt::format("set xrange [{}:{}]\n", number(w0 * 1e3), number(std::max(w1, w0 + 1e-9) * 1e3));
   gp +=
       "set offsets 0, 0, graph 0.06, graph 0.06\nset key Left reverse opaque box lc rgb "
       "'#c0c0c0'\n";
   gp += "set grid xtics ytics lc rgb '#e0e0e0'\nset mxtics\n";
   const double top = 0.94, bottom = 0.07, left = 0.1, right = 0.97;
 
-  // (i) container height
-  gp += style::stacked_margins(0, 4, top, bottom, left, right);
-  gp += "set format x ''\nunset xlabel\n";
-  gp += labels;
-  gp += "set ylabel 'container height z [mm]'\nset key top left\n";
-  std::string plot = fmt::format(
-      "plot $series using 1:2 with lines lw 2 lc rgb '{}' title "
-      "'simulation z'",
-      style::kBlue);
-  if (const auto H = theory_range(summary, "H")) {
-    plot += fmt::format(", '+' using 1:({}):({}) with filledcurves {} title 'theory H bounds'",
-                        number(H->first * 1e3), number(H->second * 1e3), style::kBand);
+  // The panels; with a record, those it has no column of are left out.
+  std::vector<Panel> panels{
+      {{"z"}, {"z"}, {style::kBlue}, "container height z [mm]"},
+      {{"r", "w"}, {"contact radius r", "apex gap w"}, {style::kRed, style::kGreen}, "r, w [mm]"},
+      {{"F"}, {"F"}, {style::kPurple}, "plate force F [N]"},
+      {{"delta_p"},
+       {"pressure difference δp (outside - inside)"},
+       {style::kOrange},
+       fmt::format("δp [{}]", kpa ? "kPa" : "Pa")},
+  };
+  if (experiment) {
+    std::vector<Panel> kept;
+    for (auto& p : panels) {
+      const bool has = std::any_of(p.columns.begin(), p.columns.end(),
+                                   [&](const char* c) { return experiment->has(c); });
+      if (has) {
+        kept.push_back(std::move(p));
+      } else {
+        notes.push_back(fmt::format("the record has no {}: that panel is left out",
+                                    fmt::join(p.columns, " or ")));
+      }
+    }
+    panels = std::move(kept);
   }
-  if (const auto H = measured(summary, "H")) {
-    const auto top_z = std::max_element(z.begin(), z.end()) - z.begin();
-    gp += fmt::format("$H << EOD\n{} {}\nEOD\n", number(t[static_cast<std::size_t>(top_z)] * 1e3),
-                      number(*H * 1e3));
-    plot +=
-        fmt::format(", $H using 1:2 {} title 'H (measured)'", style::points(style::kBlue, 8, 1.8));
+  const int n_panels = static_cast<int>(panels.size());
+  const auto column_index = [](const char* name) {
+    const std::string_view n = name;
+    return n == "z" ? 2 : n == "r" ? 3 : n == "w" ? 4 : n == "F" ? 5 : 6;
+  };
+  for (int k = 0; k < n_panels; ++k) {
+    const auto& p = panels[static_cast<std::size_t>(k)];
+    gp += style::stacked_margins(k, n_panels, top, bottom, left, right);
+    if (k + 1 < n_panels) {
+      gp += "set format x ''\nunset xlabel\n";
+    } else {
+      gp += fmt::format("set format x '%g'\nset xlabel {}\n",
+                        quote(experiment && shift != 0.0 ? "t after release (run) [ms]"
+                                                         : "t after release [ms]"));
+    }
+    if (k == 0) gp += labels;
+    const bool force_panel = std::string_view(p.columns.front()) == "F";
+    gp += fmt::format(
+        "set ylabel {}\nset key {}\n", quote(p.ylabel),
+        std::string_view(p.columns.front()) == "z" || force_panel ? "top left" : "bottom left");
+    std::vector<std::string> clauses;
+    for (std::size_t c = 0; c < p.columns.size(); ++c) {
+      const int col = column_index(p.columns[c]);
+      if (experiment && experiment->has(p.columns[c])) {
+        clauses.push_back(fmt::format("$experiment using 1:{} with lines lw 2 lc rgb '{}' title {}",
+                                      col, p.colours[c],
+                                      quote(fmt::format("experiment {}", p.titles[c]))));
+      }
+      clauses.push_back(fmt::format("$series using 1:{} with lines lw {} {}lc rgb '{}' title {}",
+                                    col, experiment ? 1.5 : 2.0, experiment ? "dt 2 " : "",
+                                    p.colours[c],
+                                    quote(fmt::format("simulation {}", p.titles[c]))));
+    }
+    const std::string_view first = p.columns.front();
+    if (first == "z") {
+      if (const auto H = theory_range(summary, "H")) {
+        clauses.push_back(
+            fmt::format("'+' using 1:({}):({}) with filledcurves {} title 'theory H bounds'",
+                        number(H->first * 1e3), number(H->second * 1e3), style::kBand));
+      }
+      if (const auto H = measured(summary, "H")) {
+        const auto top_z = std::max_element(z.begin(), z.end()) - z.begin();
+        gp += fmt::format("$H << EOD\n{} {}\nEOD\n",
+                          number(t[static_cast<std::size_t>(top_z)] * 1e3), number(*H * 1e3));
+        clauses.push_back(fmt::format("$H using 1:2 {} title 'H (measured)'",
+                                      style::points(style::kBlue, 8, 1.8)));
+      }
+    } else if (first == "r") {
+      if (ring) {
+        clauses.emplace_back(
+            "keyentry with boxes fc rgb '#fdebd3' fs solid 1.0 noborder title 'ring contact'");
+      }
+      if (disk) {
+        clauses.emplace_back(
+            "keyentry with boxes fc rgb '#d6e6f5' fs solid 1.0 noborder title 'disk contact'");
+      }
+    } else if (force_panel) {
+      if (const auto Fs = theory_range(summary, "F_star")) {
+        clauses.push_back(
+            fmt::format("'+' using 1:({}):({}) with filledcurves {} title 'theory F* bounds'",
+                        number(Fs->first), number(Fs->second), style::kBand));
+      }
+      const auto F_star = measured(summary, "F_star");
+      const auto t_F_star = measured(summary, "t_F_star");
+      if (F_star && t_F_star) {
+        gp += fmt::format("$Fstar << EOD\n{} {}\nEOD\n", number(*t_F_star * 1e3), number(*F_star));
+        clauses.push_back(fmt::format("$Fstar using 1:2 {} title 'F* (measured)'",
+                                      style::points(style::kPurple, 6, 2.0)));
+      }
+    }
+    gp += fmt::format("plot {}\n", fmt::join(clauses, ", "));
+    if (k == 0 && !labels.empty()) gp += "unset label\n";
   }
-  gp += plot + "\n";
-  if (!labels.empty()) gp += "unset label\n";
-
-  // (ii) contact radius and apex gap
-  gp += style::stacked_margins(1, 4, top, bottom, left, right);
-  gp += "set ylabel 'r, w [mm]'\nset key bottom left\n";
-  plot = fmt::format(
-      "plot $series using 1:3 with lines lw 2 lc rgb '{}' title 'contact radius r', $series "
-      "using 1:4 with lines lw 2 lc rgb '{}' title 'apex gap w'",
-      style::kRed, style::kGreen);
-  if (ring)
-    plot += ", keyentry with boxes fc rgb '#fdebd3' fs solid 1.0 noborder title 'ring contact'";
-  if (disk)
-    plot += ", keyentry with boxes fc rgb '#d6e6f5' fs solid 1.0 noborder title 'disk contact'";
-  gp += plot + "\n";
-
-  // (iii) plate force
-  gp += style::stacked_margins(2, 4, top, bottom, left, right);
-  gp += "set ylabel 'plate force F [N]'\nset key top left\n";
-  plot = fmt::format("plot $series using 1:5 with lines lw 2 lc rgb '{}' title 'simulation F'",
-                     style::kPurple);
-  if (const auto Fs = theory_range(summary, "F_star")) {
-    plot += fmt::format(", '+' using 1:({}):({}) with filledcurves {} title 'theory F* bounds'",
-                        number(Fs->first), number(Fs->second), style::kBand);
-  }
-  const auto F_star = measured(summary, "F_star");
-  const auto t_F_star = measured(summary, "t_F_star");
-  if (F_star && t_F_star) {
-    gp += fmt::format("$Fstar << EOD\n{} {}\nEOD\n", number(*t_F_star * 1e3), number(*F_star));
-    plot += fmt::format(", $Fstar using 1:2 {} title 'F* (measured)'",
-                        style::points(style::kPurple, 6, 2.0));
-  }
-  gp += plot + "\n";
-
-  // (iv) pressure difference
-  gp += style::stacked_margins(3, 4, top, bottom, left, right);
-  gp += "set format x '%g'\nset xlabel 't after release [ms]'\n";
-  gp += fmt::format("set ylabel 'δp [{}]'\nset key bottom left\n", kpa ? "kPa" : "Pa");
-  gp += fmt::format(
-      "plot $series using 1:6 with lines lw 2 lc rgb '{}' title 'pressure difference δp "
-      "(outside - inside)'\n",
-      style::kOrange);
   gp += "unset multiplot\n";
 
   render(result, gp, options.gnuplot);

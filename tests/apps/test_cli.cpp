@@ -193,6 +193,66 @@ TEST(Cli, AnalyzeNamesTheBadCell) {
   EXPECT_NE(r.err.find(":3"), std::string::npos) << r.err;
 }
 
+TEST(Cli, AFlagThatChangesTheCaseSaysSoInTheTitle) {
+  const auto r = run({"predict", example("R30_h1.5.toml"), "--h", "2mm", "--format", "json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("[changed: shell.h = 2mm]"), std::string::npos) << r.out.substr(0, 600);
+  const auto plain = run({"predict", example("R30_h1.5.toml"), "--format", "json"});
+  EXPECT_EQ(plain.out.find("[changed:"), std::string::npos);
+}
+
+TEST(Cli, AnalyzeRefusesAHeaderAlone) {
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_header_only.csv";
+  std::ofstream(path) << "t [ms],F [N]\n";
+  const auto r = run({"analyze", path.string(), "--R", "30mm"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("no rows"), std::string::npos) << r.err;
+}
+
+TEST(Cli, AnalyzeSaysWhatABareRMeansAndWhyAnOutcomeIsOpen) {
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_bare_r.csv";
+  // The ring stage only: w is still 5 mm, the suction 1.5 kPa.
+  std::ofstream(path) << "t [ms],F [N],w [mm],delta_p [kPa]\n0,0.48,6,2\n10,0.48,5,1.5\n";
+  const auto r = run({"analyze", path.string(), "--R", "30"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("not the radius of a popper's shell"), std::string::npos) << r.out;
+  const auto mm = run({"analyze", path.string(), "--R", "30mm"});
+  EXPECT_NE(mm.out.find("undetermined"), std::string::npos) << mm.out;
+  EXPECT_NE(mm.out.find("suction still holding the shell"), std::string::npos) << mm.out;
+  const auto complete = run({"analyze", path.string(), "--R", "30mm", "--complete"});
+  EXPECT_NE(complete.out.find("No snap"), std::string::npos) << complete.out;
+}
+
+TEST(Cli, AnalyzeSeveralLabRecordsIntoOneTable) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const auto a = dir / "snapjump_cli_lab_a.csv";
+  const auto b = dir / "snapjump_cli_lab_b.csv";
+  const auto bad = dir / "snapjump_cli_lab_bad.csv";
+  // A lab's own spelling: ';' separators, a time in ms named "Zeit", a force in mN by flag.
+  const std::string record =
+      "Zeit;Kraft;\"w (mm)\"\n0;480;20\n10;600;10\n20;700;1,0\n21;2500;0,5\n22;2000;0,2\n"
+      "23;500;0,1\n24;0;0,5\n30;0;6\n40;0;8\n50;0;5\n";
+  std::ofstream(a) << record;
+  std::ofstream(b) << record;
+  std::ofstream(bad) << "Zeit;Kraft\n0;abc\n";
+  const auto r =
+      run({"analyze", a.string(), b.string(), bad.string(), "--R", "30mm", "--column", "t=Zeit",
+           "--column", "F=Kraft", "--unit", "t=ms", "--unit", "F=mN", "--format", "csv"});
+  EXPECT_EQ(r.code, kExitBadInput);  // one record failed; the others are in the table
+  std::istringstream lines(r.out);
+  std::string header, row_a, row_b, row_bad;
+  std::getline(lines, header);
+  std::getline(lines, row_a);
+  std::getline(lines, row_b);
+  std::getline(lines, row_bad);
+  EXPECT_EQ(header.rfind("file,outcome,t_onset,r_star,e_star,F_star,", 0), 0U) << header;
+  EXPECT_NE(row_a.find(",Jump,"), std::string::npos) << row_a;
+  EXPECT_NE(row_a.find(",2.5,"), std::string::npos) << row_a;  // F* in N
+  EXPECT_EQ(row_a.substr(row_a.find(',')), row_b.substr(row_b.find(','))) << row_b;
+  EXPECT_NE(row_bad.find("is not a finite number"), std::string::npos) << row_bad;
+  EXPECT_NE(r.err.find("snapjump_cli_lab_bad.csv:2"), std::string::npos) << r.err;
+}
+
 TEST(Cli, AnalyzeRejectsAWrongUnitOnAFlag) {
   const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_series2.csv";
   std::ofstream(path) << "t,F\n0,1\n0.1,0\n";

@@ -69,8 +69,10 @@ struct Spec {
   bool with_r_e = true;
   bool with_z = true;
   bool with_contact = false;
-  bool with_dp = false;   // a delta_p column: 2 kPa falling by 10 Pa per ms
-  double t_disk = 21e-3;  // contact column: ring before, disk from here
+  bool with_dp = false;  // a delta_p column: 2 kPa falling by 10 Pa per ms unless dp says
+  std::function<double(double)> dp = [](double t) { return 2000.0 - 1e4 * t; };
+  double t_disk = 21e-3;  // contact column: ring before, disk from here unless contact says
+  std::function<ContactState(double)> contact;
   double t_end = 150e-3;
 };
 
@@ -95,9 +97,12 @@ TimeSeries make(const Spec& spec) {
       row.push_back(10e-3 - 0.2 * t);
       row.push_back(0.2 * t);
     }
-    if (spec.with_dp) row.push_back(2000.0 - 1e4 * t);
+    if (spec.with_dp) row.push_back(spec.dp(t));
     if (spec.with_contact) {
-      s.add_row(row, t >= spec.t_disk - 1e-12 ? ContactState::Disk : ContactState::Ring);
+      const auto state = spec.contact
+                             ? spec.contact(t)
+                             : (t >= spec.t_disk - 1e-12 ? ContactState::Disk : ContactState::Ring);
+      s.add_row(row, state);
     } else {
       s.add_row(row);
     }
@@ -347,7 +352,14 @@ TEST(Analysis, NoSnapWhenApexStaysAway) {
   spec.w = [](double) { return 1.0e-3; };  // w / R = 0.0333 > 0.03 throughout
   spec.F = [](double) { return 0.5; };
   spec.z = [](double t) { return 1e-3 * std::sin(100.0 * t); };  // max 1 mm (t = 15.7 ms)
-  const auto a = analyze(make(spec), with_R());
+  // Without a delta_p column nothing says the suction was gone before the record ended.
+  const auto open = analyze(make(spec), with_R());
+  EXPECT_FALSE(open.outcome);
+  EXPECT_NE(open.undetermined.find("without a delta_p column"), std::string::npos)
+      << open.undetermined;
+  AnalysisOptions complete = with_R();
+  complete.complete = true;  // the user says the record covers the experiment
+  const auto a = analyze(make(spec), complete);
   EXPECT_EQ(a.outcome, theory::Outcome::NoSnap);
   EXPECT_FALSE(a.t_onset);
   EXPECT_FALSE(a.r_star);
@@ -541,9 +553,16 @@ TEST(Analysis, BadInput) {
   AnalysisOptions bad;
   bad.R = -1.0;
   EXPECT_THROW((void)analyze(make({}), bad), SeriesError);
-  const auto empty = analyze(TimeSeries({"t", "F"}), with_R());
-  EXPECT_FALSE(empty.outcome);
-  EXPECT_TRUE(has_warning(empty, "empty"));
+  // A header alone: nothing to analyse is an error, not an outcome.
+  try {
+    (void)analyze(TimeSeries({"t", "F"}), with_R());
+    ADD_FAILURE() << "no error for a series without rows";
+  } catch (const SeriesError& e) {
+    EXPECT_NE(std::string(e.what()).find("no rows"), std::string::npos) << e.what();
+  }
+  AnalysisOptions negative_wait = with_R();
+  negative_wait.settle_time = -1.0;
+  EXPECT_THROW((void)analyze(make({}), negative_wait), SeriesError);
 }
 
 TEST(Analysis, Json) {
@@ -586,6 +605,145 @@ TEST(Analysis, FromCsvInOtherUnits) {
   EXPECT_NEAR(*a.t_star, 5.87e-3, 1e-6);
   EXPECT_NEAR(*a.F_star, 2.0, 1e-6);
   EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-7);
+}
+
+// --- Outcomes the record cannot settle, and records that go on past the landing ---------------
+
+// The reference jump, then a landing at 120 ms: F rises to 5 N within 1 ms (harder than the
+// snap's 2 N), falls back to the weight 0.5 N within 2 ms and stays there; z comes back down to
+// the place it left from. The flight's top is at 106 ms (as the reference), H = 66 ms * v0.
+constexpr double kLand = 120e-3;
+double F_landing(double t) {
+  if (t < kLand) return F_jump(t);
+  if (t < kLand + 1e-3) return 5.0 * (t - kLand) / 1e-3;
+  if (t < kLand + 3e-3) return 5.0 - 4.5 * (t - kLand - 1e-3) / 2e-3;
+  return 0.5;
+}
+double z_landing(double t) { return t < kLand ? z_jump(t) : z_jump(kLand); }
+
+TEST(Analysis, AFlightEndsAtTheLanding) {
+  Spec spec;
+  spec.F = F_landing;
+  spec.z = z_landing;
+  spec.t_end = 200e-3;
+  // (a) With the apex gap w: the landing's 5 N is not F*, and the popper jumped.
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(a.F_star && a.t_launch && a.H && a.t_landing);
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-12);
+  EXPECT_NEAR(*a.t_launch, 25.92e-3, 1e-10);
+  EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-12);
+  EXPECT_NEAR(*a.t_landing, kLand + kDt, kDt + 1e-12);  // first sample above 0.04 N
+  // (b) Without w: the contact column (disk from 21 ms, none in flight, disk again on landing).
+  spec.with_w = false;
+  spec.with_contact = true;
+  spec.contact = [](double t) {
+    if (t < 21e-3) return ContactState::Ring;
+    if (t < 26e-3 || t >= kLand) return ContactState::Disk;
+    return ContactState::None;
+  };
+  const auto b = analyze(make(spec), with_R());
+  EXPECT_EQ(b.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(b.F_star && b.t_launch);
+  EXPECT_NEAR(*b.F_star, 2.0, 1e-12);
+  EXPECT_NEAR(*b.t_launch, 25.92e-3, 1e-10);
+  // (c) Neither w nor contact nor z: the force alone; the first launch still ends the snap, but
+  // with no onset criterion the outcome stays undetermined.
+  spec.with_contact = false;
+  spec.with_z = false;
+  const auto c = analyze(make(spec), with_R());
+  EXPECT_FALSE(c.outcome);
+  EXPECT_FALSE(c.undetermined.empty());
+}
+
+TEST(Analysis, ContactLostEndsTheSnapWhenThePlateRingsOn) {
+  // The plate rings at 170 Hz after the launch (amplitude 0.3 N, decaying in 20 ms), so F does
+  // not stay below the threshold; the contact column says the shell left at 26 ms.
+  Spec spec;
+  spec.with_w = false;
+  spec.with_contact = true;
+  spec.F = [](double t) {
+    if (t < kT0 + kTau) return F_jump(t);
+    const double s = t - kT0 - kTau;
+    return 0.3 * std::exp(-s / 20e-3) * std::sin(2.0 * std::numbers::pi * 170.0 * s);
+  };
+  spec.contact = [](double t) {
+    if (t < 21e-3) return ContactState::Ring;
+    return t < 26e-3 ? ContactState::Disk : ContactState::None;
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(a.t_launch && a.F_star);
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-12);
+  EXPECT_GE(*a.t_launch, 25.0e-3);
+  EXPECT_LE(*a.t_launch, 26.0e-3 + 1e-12);
+}
+
+TEST(Analysis, ARecordCutInTheRingStageIsUndetermined) {
+  Spec spec;
+  spec.with_dp = true;
+  spec.t_end = 15e-3;  // before the onset at 20.05 ms; delta_p still 1.85 kPa
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome);
+  EXPECT_EQ(outcome_text(a.outcome), "undetermined");
+  EXPECT_NE(a.undetermined.find("suction"), std::string::npos) << a.undetermined;
+  // Told that the record is complete, the analysis calls it No snap.
+  AnalysisOptions complete = with_R();
+  complete.complete = true;
+  EXPECT_EQ(analyze(make(spec), complete).outcome, theory::Outcome::NoSnap);
+}
+
+TEST(Analysis, NoSnapOnceTheSuctionHasBeenGoneForTheSettleTime) {
+  Spec spec;
+  spec.w = [](double) { return 1.0e-3; };  // the apex never comes down
+  spec.F = [](double) { return 0.5; };
+  spec.with_dp = true;
+  spec.dp = [](double t) { return 2000.0 - 4e4 * t; };  // zero at 50 ms
+  spec.t_end = 150e-3;                                  // 100 ms after: settled
+  EXPECT_EQ(analyze(make(spec), with_R()).outcome, theory::Outcome::NoSnap);
+  spec.t_end = 80e-3;  // 30 ms after, less than the 50 ms settle time
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome);
+  EXPECT_NE(a.undetermined.find("after delta_p reached zero"), std::string::npos) << a.undetermined;
+}
+
+TEST(Analysis, ARecordCutDuringTheSnapIsUndetermined) {
+  Spec spec;
+  spec.t_end = 24e-3;  // after the peak at 22 ms, F still 1 N
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome);
+  ASSERT_TRUE(a.t_onset && a.F_star);  // what the record holds is still reported
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-12);
+  EXPECT_NE(a.undetermined.find("after the force peak"), std::string::npos) << a.undetermined;
+  // A simulated run paused at 20 ms (before the onset, suction left): undetermined too.
+  spec.t_end = 20e-3;
+  spec.with_dp = true;
+  EXPECT_FALSE(analyze(make(spec), with_R()).outcome);
+}
+
+TEST(Analysis, ATaredPlateIsNamedAndItsOffsetCanBePutBack) {
+  // The plate zeroed with the popper standing on it: F reads 0 at rest and -0.5 N in flight.
+  Spec spec;
+  spec.F = [](double t) { return F_jump(t) - 0.5; };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome);
+  EXPECT_TRUE(has_warning(a, "looks tared")) << a.warnings.size();
+  AnalysisOptions fixed = with_R();
+  fixed.force_offset = 0.5;
+  const auto b = analyze(make(spec), fixed);
+  EXPECT_EQ(b.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(b.F_star && b.t_launch);
+  EXPECT_NEAR(*b.F_star, 2.0, 1e-12);
+  EXPECT_NEAR(*b.t_launch, 25.92e-3, 1e-10);
+  EXPECT_FALSE(has_warning(b, "looks tared"));
+}
+
+TEST(Analysis, ABareNumberForRIsNamed) {
+  AnalysisOptions o;
+  o.R = 30.0;  // "--R 30": 30 m
+  const auto a = analyze(make({}), o);
+  EXPECT_TRUE(has_warning(a, "not the radius of a popper's shell")) << a.warnings.size();
+  EXPECT_FALSE(has_warning(analyze(make({}), with_R()), "not the radius"));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // TimeSeries and its CSV format: construction, appending, exact round trips, unit brackets, the
 // incremental writer, and one message per class of malformed input.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -216,9 +217,12 @@ TEST(TimeSeriesCsvErrors, NonNumericCell) {
   const auto m = read_error("t,F,z [mm]\n0,1,2\n# c\n1e-3,0.5,abc\n");
   EXPECT_NE(m.find("run.csv:4: column 3 'z [mm]': 'abc' is not a finite number"), std::string::npos)
       << m;
-  EXPECT_NE(read_error("t,F\n0,nan\n").find("run.csv:2: column 2 'F'"), std::string::npos);
   EXPECT_NE(read_error("t,F\n0,1.5x\n").find("'1.5x' is not a finite number"), std::string::npos);
-  EXPECT_NE(read_error("t,F\n0,\n").find("'' is not a finite number"), std::string::npos);
+  EXPECT_NE(read_error("t,F\n0,inf\n").find("'inf' is not a finite number"), std::string::npos);
+  // An empty or NaN cell is a missing value; a record whose F is all missing has nothing to read.
+  EXPECT_NE(read_error("t,F\n0,nan\n").find("no row has a value of F"), std::string::npos);
+  EXPECT_NE(read_error("t,F\n0,\n").find("no row has a value of F"), std::string::npos);
+  EXPECT_NE(read_error("t,F\n,1\n").find("column 1 't': the time is empty"), std::string::npos);
 }
 
 TEST(TimeSeriesCsvErrors, FewerAndMoreCells) {
@@ -231,19 +235,21 @@ TEST(TimeSeriesCsvErrors, FewerAndMoreCells) {
       << more;
 }
 
-TEST(TimeSeriesCsvErrors, NonIncreasingTime) {
-  const auto m = read_error("F,t [ms]\n0,1\n0,2\n0,2\n");
-  EXPECT_NE(m.find("run.csv:4: column 2 't [ms]': time 0.002 s is not after the previous row's "
-                   "0.002 s"),
+TEST(TimeSeriesCsvErrors, OneTimeWithTwoValues) {
+  // Rows of one time are merged (a merged file of several sensors); two different values of one
+  // column at one time are an error naming both lines.
+  const auto m = read_error("F,t [ms]\n0,1\n0,2\n1,2\n");
+  EXPECT_NE(m.find("run.csv:4: column 'F': time 0.002 s is also on line 3 with another value"),
             std::string::npos)
       << m;
 }
 
 TEST(TimeSeriesCsvErrors, MissingTimeOrForce) {
-  const auto no_t = read_error("time,F\n0,1\n");
-  EXPECT_NE(no_t.find("run.csv:1: the header has no 't' column (time, required); it has: time, F"),
+  const auto no_t = read_error("clock,F\n0,1\n");
+  EXPECT_NE(no_t.find("run.csv:1: the header has no 't' column (time, required); it has: clock, F"),
             std::string::npos)
       << no_t;
+  EXPECT_NE(no_t.find("--column t=\"Time (s)\""), std::string::npos) << no_t;
   const auto no_f = read_error("t,z\n0,1\n");
   EXPECT_NE(no_f.find("run.csv:1: the header has no 'F' column"), std::string::npos) << no_f;
 }
@@ -264,6 +270,112 @@ TEST(TimeSeriesCsvErrors, EmptyInputAndMissingFile) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/run.csv: cannot open"),
               std::string::npos);
   }
+}
+
+// --- Records as laboratories log them ------------------------------------------------------------
+
+TimeSeries read_with(const std::string& text, const ReadOptions& options) {
+  const units::UnitParser parser;
+  std::istringstream in(text);
+  return TimeSeries::read_csv(in, "lab.csv", parser, options);
+}
+
+bool has_note(const TimeSeries& s, std::string_view text) {
+  for (const auto& n : s.notes()) {
+    if (n.find(text) != std::string::npos) return true;
+  }
+  return false;
+}
+
+TEST(LabRecords, SeparatorsQuotesAndHeaderSpellings) {
+  // Semicolons with decimal commas, quoted headers with units in parentheses, a pandas index.
+  const auto a =
+      read_with(";\"Time (s)\";\"Fz (N)\";\"z (mm)\"\n0;0,000;0,48;0,0\n1;0,001;0,50;0,5\n", {});
+  EXPECT_EQ(a.columns(), (std::vector<std::string>{"t", "F", "z"}));
+  ASSERT_EQ(a.size(), 2U);
+  EXPECT_DOUBLE_EQ(a.column("t")[1], 1e-3);
+  EXPECT_DOUBLE_EQ(a.column("F")[1], 0.50);
+  EXPECT_DOUBLE_EQ(a.column("z")[1], 0.5e-3);
+  EXPECT_TRUE(has_note(a, "column 1 has no name"));
+  // Tabs; names with a unit suffix; "Unnamed: 0" from pandas.
+  const auto b = read_with("Unnamed: 0\tt_ms\tF_N\te_m\n0\t0\t1\t0.001\n1\t0.2\t2\t0.002\n", {});
+  EXPECT_EQ(b.columns(), (std::vector<std::string>{"t", "F", "e"}));
+  EXPECT_DOUBLE_EQ(b.column("t")[1], 0.2e-3);
+  EXPECT_DOUBLE_EQ(b.column("e")[1], 0.002);
+  // A quoted cell may hold the separator.
+  const auto c = read_with("t,F,\"note, free text\"\n0,1,2\n", {});
+  EXPECT_EQ(c.columns().size(), 3U);
+}
+
+TEST(LabRecords, ColumnMappingAndUnitsByOption) {
+  ReadOptions o;
+  o.columns = {{"t", "Zeit"}, {"F", "Kraft"}};
+  o.units = {{"t", "ms"}, {"F", "mN"}};
+  const auto s = read_with("Zeit,Kraft\n0,480\n0.2,500\n", o);
+  EXPECT_DOUBLE_EQ(s.column("t")[1], 0.2e-3);
+  EXPECT_DOUBLE_EQ(s.column("F")[1], 0.5);
+  // A mapping that names no column, a unit given twice, a unit for a column not there.
+  ReadOptions bad;
+  bad.columns = {{"t", "Time (s)"}};
+  try {
+    (void)read_with("Zeit,F\n0,1\n", bad);
+    ADD_FAILURE() << "no error";
+  } catch (const SeriesError& e) {
+    EXPECT_NE(std::string(e.what()).find("t=\"Time (s)\" names no column; it has: Zeit, F"),
+              std::string::npos)
+        << e.what();
+  }
+  ReadOptions twice;
+  twice.units = {{"t", "ms"}};
+  EXPECT_THROW((void)read_with("t [s],F\n0,1\n", twice), SeriesError);
+  ReadOptions absent;
+  absent.units = {{"z", "mm"}};
+  EXPECT_THROW((void)read_with("t,F\n0,1\n", absent), SeriesError);
+}
+
+TEST(LabRecords, UnsortedRowsAreSortedWithANote) {
+  const auto s = read_with("t,F\n0.002,3\n0,1\n0.001,2\n", {});
+  EXPECT_EQ(std::vector<double>(s.column("F").begin(), s.column("F").end()),
+            (std::vector<double>{1, 2, 3}));
+  EXPECT_TRUE(has_note(s, "the time goes back at 1 places")) << s.notes().size();
+}
+
+TEST(LabRecords, SensorsOnTheirOwnClocksAreResampledOntoTheForce) {
+  // F at 0, 1, 2, 3, 4 ms; z (a laser) at 0.5, 2.5, 4.5 ms with z = 10 t (mm, t in ms) exactly,
+  // so the interpolated z at 1 ms is 10 mm; the record is cut to 1 .. 4 ms, where z covers it.
+  const auto s = read_with(
+      "t [ms],F [N],z [mm]\n0,1,\n0.5,,5\n1,2,\n2,3,\n2.5,NaN,25\n3,4,\n4,5,\n4.5,,45\n", {});
+  EXPECT_EQ(std::vector<double>(s.column("t").begin(), s.column("t").end()),
+            (std::vector<double>{1e-3, 2e-3, 3e-3, 4e-3}));
+  const auto z = s.column("z");
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    EXPECT_NEAR(z[i], 10.0 * s.column("t")[i], 1e-15) << i;  // z [m] = 10 t [s]
+  }
+  EXPECT_TRUE(has_note(s, "interpolated linearly onto the force's"));
+  EXPECT_TRUE(has_note(s, "the record is cut to 0.001 .. 0.004 s"))
+      << fmt::format("{}", fmt::join(s.notes(), " | "));
+}
+
+TEST(LabRecords, ADropoutIsAGapWithANote) {
+  // w sampled every ms from 0 to 20 ms, missing from 6 to 13 ms.
+  std::string text = "t [ms],F,w [mm]\n";
+  for (int i = 0; i <= 20; ++i) {
+    const bool lost = i > 5 && i < 14;
+    text += fmt::format("{},{},{}\n", i, 1.0, lost ? std::string("") : fmt::format("{}", 20 - i));
+  }
+  const auto s = read_with(text, {});
+  ASSERT_EQ(s.gaps().size(), 1U);
+  EXPECT_EQ(s.gaps()[0].column, "w");
+  EXPECT_DOUBLE_EQ(s.gaps()[0].from, 5e-3);
+  EXPECT_DOUBLE_EQ(s.gaps()[0].to, 14e-3);
+  EXPECT_NEAR(s.column("w")[10], 10e-3, 1e-15);  // linear across the gap
+  EXPECT_TRUE(has_note(s, "column 'w' has no values from 0.005 to 0.014 s"));
+}
+
+TEST(LabRecords, AColumnCoveringLittleOfTheRecordIsLeftOut) {
+  const auto s = read_with("t,F,r\n0,1,\n1,1,0.01\n2,1,\n3,1,\n4,1,\n", {});
+  EXPECT_FALSE(s.has("r"));
+  EXPECT_TRUE(has_note(s, "column 'r' has 1 values"));
 }
 
 }  // namespace

@@ -436,6 +436,63 @@ TEST_F(Plot, ContactBranches) {
   EXPECT_TRUE(contains(bad.err, "'N'")) << bad.err;
 }
 
+TEST_F(Plot, ContactFiguresOfTwoPoissonRatiosDoNotOverwriteEachOther) {
+  const std::string table =
+      "branch,a,N,e_hat,c1,residual,min_gap\ndisk,1e-8,0.01,0.00125,0.1,1e-14,0\n"
+      "disk,1.0,20.0,2.6,0.5,1e-13,0\nring,6.0,95.0,18.5,,1e-12,0\n";
+  std::ofstream(dir_ / "a-nu0.3.csv") << table;
+  std::ofstream(dir_ / "b-nu0.45.csv") << table;
+  ASSERT_EQ(run({"plot", "contact", (dir_ / "a-nu0.3.csv").string()}).code, app::kExitOk);
+  ASSERT_EQ(run({"plot", "contact", (dir_ / "b-nu0.45.csv").string()}).code, app::kExitOk);
+  EXPECT_TRUE(is_png(dir_ / "a-nu0.3.png"));
+  EXPECT_TRUE(is_png(dir_ / "b-nu0.45.png"));
+  EXPECT_TRUE(fs::exists(dir_ / "b-nu0.45.gp"));
+  // An image name whose extension snapjump cannot write is refused, not filled with PNG data.
+  const auto pdf = run(
+      {"plot", "contact", (dir_ / "a-nu0.3.csv").string(), "--output", (dir_ / "x.pdf").string()});
+  EXPECT_EQ(pdf.code, app::kExitBadInput);
+  EXPECT_TRUE(contains(pdf.err, "png or svg")) << pdf.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.pdf"));
+}
+
+TEST_F(Plot, SeriesWithAnExperimentBesideItInAWindow) {
+  const auto run_dir = make_run(dir_);
+  // A record with F, w and a contact column only: its onset (disk) at 18 ms falls on the run's
+  // 8 ms; the panels of z and delta_p are left out.
+  const auto record = dir_ / "record.csv";
+  {
+    std::ofstream out(record);
+    out << "Time (s);Fz (N);w (mm);contact\n";
+    for (int i = 0; i < 300; ++i) {
+      const double t = 1e-4 * i;
+      out << t << ';' << (t < 0.022 ? 1.0 : 0.0) << ';' << 10.0 * (1.0 - t / 0.04) << ';'
+          << (t < 0.018 ? "ring" : "disk") << '\n';
+    }
+  }
+  const auto r = run({"plot", "series", run_dir.string(), "--experiment", record.string(),
+                      "--window", "5ms:15ms"});
+  ASSERT_EQ(r.code, app::kExitOk) << r.err << r.out;
+  const auto png = run_dir / "figures" / "series-experiment.png";
+  EXPECT_TRUE(is_png(png));
+  const auto script = slurp(run_dir / "figures" / "series-experiment.gp");
+  EXPECT_TRUE(contains(script, "set xrange [5:15]")) << script.substr(0, 400);
+  EXPECT_TRUE(contains(script, "'experiment F'"));
+  EXPECT_TRUE(contains(script, "dt 2 lc rgb")) << "the run is dashed beside a record";
+  EXPECT_TRUE(contains(script, "'experiment apex gap w'"));
+  EXPECT_FALSE(contains(script, "container height z [mm]"));
+  EXPECT_FALSE(contains(script, "δp ["));
+  EXPECT_TRUE(contains(r.out, "the record's 0.018 s drawn at the run's 0.008 s")) << r.out;
+  EXPECT_TRUE(contains(r.out, "the record has no z: that panel is left out")) << r.out;
+  // From the release instead: no shift.
+  const auto rel = run({"plot", "series", run_dir.string(), "--experiment", record.string(),
+                        "--align", "release", "--output", (dir_ / "rel.svg").string()});
+  ASSERT_EQ(rel.code, app::kExitOk) << rel.err;
+  EXPECT_FALSE(contains(rel.out, "drawn at the run's")) << rel.out;
+  // A window that ends before it starts.
+  const auto bad = run({"plot", "series", run_dir.string(), "--window", "15ms:5ms"});
+  EXPECT_EQ(bad.code, app::kExitBadInput);
+}
+
 TEST_F(Plot, MissingGnuplotIsAFailureNamingTheScript) {
   const auto run_dir = make_run(dir_);
   ::setenv("SNAPJUMP_GNUPLOT", "/nonexistent/gnuplot", 1);
