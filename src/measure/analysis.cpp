@@ -192,7 +192,8 @@ std::optional<std::size_t> find_onset(const TimeSeries& s, const AnalysisOptions
 // first sample after the peak where F is below kQuiet F* (so that a record ending soon after the
 // launch does not count the falling flank as noise), and only if F is about zero there (in
 // flight). When the record goes on past a landing (F back on the weight at its end), the longest
-// stretch after the peak where F stays within kQuiet F* of zero (the flight) is used instead.
+// stretch after the peak where F stays within kQuiet F* of zero is used instead, if its median is
+// within relative_threshold F* of zero (a flight).
 constexpr double kQuiet = 0.1;
 constexpr std::size_t kMinNoiseSamples = 5;
 
@@ -232,10 +233,17 @@ void estimate_noise(std::span<const double> t, std::span<const double> F, const 
     i = j;
   }
   if (best_len >= kMinNoiseSamples) {
-    a.force_noise = robust_sigma(
-        std::vector<double>(F.begin() + static_cast<std::ptrdiff_t>(best_from),
-                            F.begin() + static_cast<std::ptrdiff_t>(best_from + best_len)));
-    return;
+    // A flight reads about zero: a stretch whose median is not (the popper resting lightly on
+    // the plate, pulled by the suction) says nothing about the noise.
+    std::vector<double> stretch(F.begin() + static_cast<std::ptrdiff_t>(best_from),
+                                F.begin() + static_cast<std::ptrdiff_t>(best_from + best_len));
+    std::vector<double> sorted = stretch;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(best_len / 2),
+                     sorted.end());
+    if (std::abs(sorted[best_len / 2]) <= o.relative_threshold * F_star) {
+      a.force_noise = robust_sigma(std::move(stretch));
+      return;
+    }
   }
   if (median) {
     a.warnings.push_back(fmt::format(
@@ -252,10 +260,10 @@ double launch_level(const AnalysisOptions& o, double F_peak, const Analysis& a) 
 
 // The launch: from the window's first sample on, with the force peak so far as F*, the first
 // crossing of F below the threshold after that peak such that, for min_flight_time (or to the
-// end of the record), F stays below the larger of the threshold and kQuiet F* (a plate rings on
-// after the launch) and below the threshold on average, and, with a z column, the container is
-// higher at the end of that time than at the crossing. The snap ends there: a landing later in the
-// record, however hard, is not its force. Crossings are looked for up to the sample `last`
+// end of the record), F stays below the threshold (raised by as much as F dips below zero then:
+// a plate rings on after the launch) and below it on average, and, with a z column, the container
+// is higher at the end of that time than at the crossing. The snap ends there: a landing later in
+// the record, however hard, is not its force. Crossings are looked for up to the sample `last`
 // (inclusive); F staying below is checked on the whole record. Returns the peak before the launch
 // and sets t_launch, or returns nothing when there is no launch.
 std::optional<std::size_t> find_launch(const TimeSeries& s, const AnalysisOptions& o,
@@ -273,9 +281,15 @@ std::optional<std::size_t> find_launch(const TimeSeries& s, const AnalysisOption
     if (F[k] >= level || F[k - 1] < level || !(F[peak] > level)) continue;
     // F[k - 1] >= level > F[k]: the first sample of a candidate stretch below the threshold.
     const double t_cross = crossing_time(t, F, k, level);
-    // In flight a plate rings on after the launch: F must stay below the larger of the threshold
-    // and kQuiet F* throughout, and below the threshold on average.
-    const double ceiling = std::max(level, kQuiet * F[peak]);
+    // In flight a plate rings on after the launch, swinging below zero as far as above it: F
+    // must stay below the threshold raised by its deepest dip below zero in that time (at most
+    // to kQuiet F*), and below the threshold on average. A force that stays positive (the shell
+    // still touching, lightly) gets no such allowance.
+    double deepest = 0.0;
+    for (std::size_t i = k; i < n && t[i] <= t_cross + o.min_flight_time; ++i) {
+      deepest = std::min(deepest, F[i]);
+    }
+    const double ceiling = std::min(level - deepest, std::max(level, kQuiet * F[peak]));
     std::size_t j = k;
     bool stays = true;
     double sum = 0.0;
@@ -610,7 +624,18 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
           "without having left the plate: F* is the largest force before that",
           t[last], options.onset_ratio));
     }
-    if (a.t_launch) {
+    // A launch before the onset: the popper left the plate before the apex came down (thrown
+    // up by the inflow), and the onset is the apex coming down with the falling popper.
+    std::optional<double> early_flight;
+    if (a.t_launch && *a.t_launch < t_on) early_flight = a.t_launch;
+    if (early_flight) {
+      // The popper left the plate before the apex came down (thrown up by the inflow without a
+      // snap on the plate): the onset found later is its landing on the everted shell.
+      a.undetermined = fmt::format(
+          "the popper left the plate at t = {:.6g} s, before the onset (w / R < {} only at t = "
+          "{:.6g} s, after it came down again): no snap from the plate to measure",
+          *early_flight, options.onset_ratio, t_on);
+    } else if (a.t_launch) {
       a.t_star = *a.t_launch - t_on;
       a.t_star_rise = *a.t_launch - *a.t_force_rise;
     } else if (ring_again) {

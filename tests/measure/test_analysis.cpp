@@ -738,6 +738,36 @@ TEST(Analysis, ATaredPlateIsNamedAndItsOffsetCanBePutBack) {
   EXPECT_FALSE(has_warning(b, "looks tared"));
 }
 
+TEST(Analysis, AFlightBeforeTheOnsetIsNoSnapFromThePlate) {
+  // Thrown up by the inflow at 10 ms while the apex is still 5 mm up (v0 = g 45 ms, landing at
+  // 100 ms); in the air the shell everts (w = z + 1.0 mm, sagging to 0.8 mm), so w / R < 0.03
+  // (w < 0.9 mm) only just before the landing, where a 3 N impact follows.
+  constexpr double v0 = g * 45e-3;
+  const auto z_of = [v0](double t) {
+    const double s = t - 10e-3;
+    return t < 10e-3 || t > 100e-3 ? 0.0 : v0 * s - 0.5 * g * s * s;
+  };
+  Spec spec;
+  spec.F = [](double t) {
+    if (t < 10e-3) return 0.5;
+    if (t < 100e-3) return 0.0;
+    if (t < 102e-3) return 3.0;
+    return 0.5;
+  };
+  spec.z = z_of;
+  spec.w = [z_of](double t) {
+    return t < 10e-3 ? 5e-3 : 1.0e-3 - 0.2e-3 * (t - 10e-3) / 90e-3 + z_of(t);
+  };
+  spec.t_end = 200e-3;
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome);
+  EXPECT_NE(a.undetermined.find("before the onset"), std::string::npos)
+      << a.undetermined << " onset " << a.t_onset.value_or(-1) << " launch "
+      << a.t_launch.value_or(-1) << " F* " << a.F_star.value_or(-1) << " at "
+      << a.t_F_star.value_or(-1);
+  EXPECT_FALSE(a.t_star);
+}
+
 TEST(Analysis, ABareNumberForRIsNamed) {
   AnalysisOptions o;
   o.R = 30.0;  // "--R 30": 30 m
