@@ -146,6 +146,12 @@ PlotCommand::PlotCommand(CLI::App& app) {
                    "with --experiment: shift the record so that its onset falls on the run's "
                    "(onset, the default) or draw both from the release (release)")
       ->check(CLI::IsMember({"onset", "release"}));
+  series_->add_option("--column", columns_,
+                      "with --experiment: which header names a column of the record, "
+                      "NAME=HEADER (as for analyze)");
+  series_->add_option("--unit", units_,
+                      "with --experiment: unit of a record's column whose header has none, "
+                      "NAME=UNIT");
   add_common(*series_, format_, output_);
 
   sections_ = plot_->add_subcommand(
@@ -192,6 +198,15 @@ int PlotCommand::run(std::ostream& out, std::ostream& err) const {
       so.experiment = experiment_;
       if (!window_.empty()) so.window = parse_window(window_);
       so.align_at_release = align_ == "release";
+      const auto pair = [](const std::string& text, const char* flag) {
+        const auto eq = text.find('=');
+        if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+          throw plot::PlotInputError(fmt::format("{} {}: write NAME=VALUE", flag, text));
+        }
+        return std::pair{text.substr(0, eq), text.substr(eq + 1)};
+      };
+      for (const auto& c : columns_) so.read.columns.push_back(pair(c, "--column"));
+      for (const auto& u : units_) so.read.units.push_back(pair(u, "--unit"));
       r = plot::plot_series(input_, options, so);
     } else if (sections_->parsed()) {
       r = plot::plot_sections(input_, parse_times(times_), options);

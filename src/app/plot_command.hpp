@@ -11,6 +11,7 @@
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
@@ -46,6 +47,8 @@ class PlotCommand {
   std::string experiment_;  // plot series: a measured record drawn beside the run
   std::string window_;      // plot series: "450ms:560ms"
   std::string align_ = "onset";
+  std::vector<std::string> columns_;  // plot series: NAME=HEADER for the record
+  std::vector<std::string> units_;    // plot series: NAME=UNIT for the record
 };
 
 }  // namespace snapjump::app

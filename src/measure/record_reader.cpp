@@ -296,9 +296,11 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
     if (c.is_contact) contact_col = k;
     header.push_back(std::move(c));
   }
-  for (const auto& [to, from] : options.columns) {
+  for (const auto& mapping : options.columns) {
+    const auto& [to, from] = mapping;
+    const auto wanted = trim(from);
     const bool found = std::any_of(header.begin(), header.end(),
-                                   [&](const HeaderColumn& h) { return h.text == trim(from); });
+                                   [wanted](const HeaderColumn& h) { return h.text == wanted; });
     if (!found) {
       std::vector<std::string_view> have;
       for (const auto& h : header) have.push_back(h.text);
@@ -306,9 +308,10 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
                                     at(), to, from, fmt::join(have, ", ")));
     }
   }
-  for (const auto& [col, u] : options.units) {
+  for (const auto& unit : options.units) {
+    const std::string& col = unit.first;
     const bool found = std::any_of(header.begin(), header.end(),
-                                   [&](const HeaderColumn& h) { return h.name == col; });
+                                   [&col](const HeaderColumn& h) { return h.name == col; });
     if (!found) {
       throw SeriesError(fmt::format(
           "{}: a unit is given for the column '{}', which the record has not", at(), col));

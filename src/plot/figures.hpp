@@ -13,6 +13,7 @@
 #include <string_view>
 #include <utility>
 
+#include "measure/time_series.hpp"
 #include "plot/gnuplot.hpp"
 
 namespace snapjump::plot {
@@ -27,6 +28,8 @@ struct SeriesFigureOptions {
   // The record is shifted so that its onset falls on the run's; with this, not shifted (both
   // clocks start at the release, as the valve opens).
   bool align_at_release = false;
+  // How to read the record (column mapping, units by option).
+  measure::ReadOptions read;
 };
 
 // RUN_DIR/series.csv (and RUN_DIR/summary.json when present); default image

@@ -184,7 +184,8 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
   double shift = 0.0;  // added to the experiment's times [s]
   if (with_experiment) {
     try {
-      experiment.emplace(measure::TimeSeries::read_csv_file(series_options.experiment));
+      experiment.emplace(measure::TimeSeries::read_csv_file(series_options.experiment, nullptr,
+                                                            series_options.read));
     } catch (const measure::SeriesError& e) {
       throw PlotInputError(e.what());
     }

@@ -488,6 +488,15 @@ TEST_F(Plot, SeriesWithAnExperimentBesideItInAWindow) {
                         "--align", "release", "--output", (dir_ / "rel.svg").string()});
   ASSERT_EQ(rel.code, app::kExitOk) << rel.err;
   EXPECT_FALSE(contains(rel.out, "drawn at the run's")) << rel.out;
+  // A record in another spelling, named by --column and --unit as for analyze.
+  const auto other = dir_ / "zeit.csv";
+  std::ofstream(other) << "Zeit;Kraft\n0;500\n10;2500\n20;0\n30;0\n";
+  const auto mapped =
+      run({"plot", "series", run_dir.string(), "--experiment", other.string(), "--column",
+           "t=Zeit", "--column", "F=Kraft", "--unit", "t=ms", "--unit", "F=mN", "--output",
+           (dir_ / "zeit.png").string()});
+  ASSERT_EQ(mapped.code, app::kExitOk) << mapped.err;
+  EXPECT_TRUE(contains(slurp(dir_ / "zeit.gp"), "'experiment F'"));
   // A window that ends before it starts.
   const auto bad = run({"plot", "series", run_dir.string(), "--window", "15ms:5ms"});
   EXPECT_EQ(bad.code, app::kExitBadInput);
