@@ -7,9 +7,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +24,8 @@
 #include "io/prediction_report.hpp"
 #include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mesh/msh_reader.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::app {
@@ -495,6 +499,18 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
                    "output: table, json or csv (one row per record)")
       ->check(CLI::IsMember({"table", "json", "csv"}));
 
+  auto* mesh_cmd = app.add_subcommand(
+      "mesh",
+      "Write the shell the simulator would use as a gmsh .msh file (quadratic tetrahedra, the "
+      "physical groups shell, inner, clamped, outer): a starting point to edit in gmsh and name "
+      "in a case as [shell] mesh = \"cap.msh\" (docs/shells.md).");
+  CaseOptions mesh_case;
+  mesh_case.add_to(*mesh_cmd);
+  std::string mesh_resolution, mesh_output;
+  mesh_cmd->add_option("--resolution", mesh_resolution, "coarse, default or fine")
+      ->check(CLI::IsMember({"coarse", "default", "fine"}));
+  mesh_cmd->add_option("--output", mesh_output, "the .msh file to write")->required();
+
   auto* run_cmd = app.add_subcommand(
       "run",
       "Simulate the popper (3D MPM, or --model axisymmetric): buckle, set delta_p_j, ground, "
@@ -543,6 +559,32 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     if (predict_cmd->parsed()) return predict(predict_opts, format, out);
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
     if (analyze->parsed()) return analyze_cmd(analyze_opts, out, err);
+    if (mesh_cmd->parsed()) {
+      auto c = mesh_case.load();
+      if (const auto r = config::parse_resolution(mesh_resolution)) c.numerics.resolution = *r;
+      if (!c.shell.mesh.empty()) {
+        throw config::CaseError(fmt::format(
+            "mesh: the case already names its mesh ({}); `snapjump mesh` writes the spherical "
+            "cap of R, h, phi",
+            c.shell.mesh));
+      }
+      if (std::filesystem::path(mesh_output).extension() != ".msh") {
+        throw config::CaseError(
+            fmt::format("mesh --output {}: name the file .msh (gmsh's format)", mesh_output));
+      }
+      const auto spec = mesh::cap_spec(c);
+      const auto m = mesh::make_cap_mesh(spec);
+      mesh::write_msh(m, mesh_output);
+      fmt::print(out,
+                 "snapjump mesh: {}\n  cap         R = {:.4g} mm, h = {:.4g} mm, phi = {:.4g} deg, "
+                 "element size {:.3g} mm, {} layers ({} resolution)\n  mesh        {} ten-node "
+                 "tetrahedra, {} nodes; groups shell, inner, clamped, outer\n  written     {}\n",
+                 c.title.empty() ? c.source : c.title, 1e3 * spec.R, 1e3 * spec.h,
+                 spec.phi * 180.0 / std::numbers::pi, 1e3 * spec.element_size, spec.layers,
+                 config::to_string(c.numerics.resolution), m.tets.size(), m.nodes.size(),
+                 mesh_output);
+      return kExitOk;
+    }
     if (sweep_cmd.parsed()) return sweep_cmd.run(out, err);
     if (plot_cmd.parsed()) return plot_cmd.run(out, err);
     if (run_cmd->parsed()) {
@@ -583,6 +625,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;
   } catch (const measure::SeriesError& e) {
+    fmt::print(err, "error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const mesh::MeshError& e) {
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {

@@ -271,7 +271,14 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
              where, resuming ? " (resumed)" : "");
   nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", "running"}};
   if (!resuming) {
-    io::write_file_atomically(dir / "case.toml", config::to_toml(c));
+    // A designer's mesh goes into the folder with the case, so that a resume or a rerun does not
+    // depend on a file that may change or move; case.toml names the copy (relative to itself).
+    auto written = c;
+    if (!c.shell.mesh.empty()) {
+      fs::copy_file(c.shell.mesh, dir / "shell.msh", fs::copy_options::overwrite_existing);
+      written.shell.mesh = "shell.msh";
+    }
+    io::write_file_atomically(dir / "case.toml", config::to_toml(written));
     write_json_file(dir / "summary.json", summary);
   }
 
@@ -291,7 +298,11 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     io::PvdCollection pvd(dir / "run.pvd");
     const auto snapshot = [&]() {
       const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd.size());
-      pop.model().write_snapshot(dir / name);
+      pop.model().write_snapshot(dir / name, pop.time());
+      // The plate and the container (its side, up to a height of the shell's radius) as
+      // simple geometry for ParaView.
+      io::write_apparatus_vtu(dir / io::apparatus_file(name), 2.0 * c.shell.R,
+                              pop.model().outer_rim_radius(), pop.model().outer_rim_z(), c.shell.R);
       pvd.add(pop.time(), name);
       loop.frames.emplace_back(pop.time(), name);
     };
@@ -303,8 +314,8 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       ++loop.rows;
       return s;
     };
-    const std::string comment =
-        "snapjump run (the case is in case.toml); SI units; t = 0 at the release";
+    // series.csv has no comment line: ParaView's CSV reader would read the columns as text
+    // (the case is in case.toml, the units are SI, t = 0 at the release: docs/analysis.md).
 
     if (resuming) {
       if (std::ifstream prev(dir / "summary.json"); prev) {
@@ -327,7 +338,6 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       // renamed file.
       const fs::path tmp_series = dir / "series.csv.tmp";
       csv.emplace(tmp_series, columns, true);
-      csv->write_comment(comment);
       std::vector<double> row(columns.size());
       for (std::size_t i = 0; i < loop.rows; ++i) {
         for (std::size_t k = 0; k < columns.size(); ++k) row[k] = old.column(columns[k])[i];
@@ -381,7 +391,6 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       write_json_file(dir / "summary.json", summary);
       pop.release();
       csv.emplace(dir / "series.csv", columns, true);
-      csv->write_comment(comment);
       fs::create_directories(dir / "snapshots");
       record();
       snapshot();

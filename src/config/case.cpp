@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <numbers>
@@ -66,6 +67,7 @@ constexpr KeySpec kKeys[] = {
 constexpr std::string_view kResolutionKey = "resolution";
 constexpr std::string_view kLayersKey = "elements_through_thickness";
 constexpr std::string_view kModelKey = "model";
+constexpr std::string_view kMeshKey = "mesh";
 constexpr std::string_view kTitleKey = "title";
 
 constexpr std::string_view kDefaultCase =
@@ -119,6 +121,7 @@ std::string keys_of(std::string_view table) {
   }
   if (table == "numerics")
     out += fmt::format(", {}, {}, {}", kModelKey, kResolutionKey, kLayersKey);
+  if (table == "shell") out += fmt::format(", {}", kMeshKey);
   return out;
 }
 
@@ -212,6 +215,20 @@ class Reader {
         const auto m = parse_model(s ? std::string_view(s->get()) : std::string_view());
         if (!m) fail(key.source(), "numerics.model must be \"3d\" or \"axisymmetric\"");
         c.numerics.model = *m;
+        continue;
+      }
+      if (table_name == "shell" && name == kMeshKey) {
+        const auto* s = node.as_string();
+        if (s == nullptr || s->get().empty()) {
+          fail(key.source(), "shell.mesh must be the path of a gmsh .msh file, e.g. \"cap.msh\"");
+        }
+        std::filesystem::path p(s->get());
+        if (p.is_relative() && source_ != "built-in default case") {
+          p = std::filesystem::path(std::string(source_)).parent_path() / p;
+        }
+        std::error_code ec;
+        const auto absolute = std::filesystem::absolute(p, ec);
+        c.shell.mesh = (ec ? p : absolute).lexically_normal().string();
         continue;
       }
       if (table_name == "numerics" && name == kLayersKey) {
@@ -345,6 +362,11 @@ Case build(const Reader& r, Case c) {
     check(c.protocol.delta_p_j_over_pc >= 0.0,
           fmt::format("{} must not be negative", r.where(spec("protocol", "delta_p_j_over_pc"))));
   }
+  if (!c.shell.mesh.empty()) {
+    std::error_code ec;
+    check(std::filesystem::is_regular_file(c.shell.mesh, ec),
+          fmt::format("{}: shell.mesh = \"{}\": no such file", c.source, c.shell.mesh));
+  }
   if (c.numerics.element_size) positive("numerics", "element_size", *c.numerics.element_size);
   if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
@@ -397,6 +419,7 @@ std::string to_toml(const Case& c) {
   // (quotes, newlines, control characters) reads back as it was. Numbers are doubles, which the
   // serializer writes in their shortest form that reads back to the same value.
   toml::table shell{{"R", c.shell.R}, {"h", c.shell.h}, {"phi", c.shell.phi}};
+  if (!c.shell.mesh.empty()) shell.insert("mesh", c.shell.mesh);
   toml::table material{{"E", c.material.E}, {"nu", c.material.nu}, {"rho", c.material.rho}};
   toml::table popper{{"net_weight", c.popper.net_weight}, {"mass", c.popper.mass}};
   if (c.popper.wire_stiffness) popper.insert("wire_stiffness", *c.popper.wire_stiffness);

@@ -24,6 +24,11 @@ struct Shell {
   double R = 0.0;    // mid-surface radius of curvature [m]
   double h = 0.0;    // thickness [m]
   double phi = 0.0;  // polar angle of the rim, from the apex [rad]
+  // A designer's own shell: a gmsh .msh file (quadratic tetrahedra with the physical groups of
+  // docs/shells.md), as an absolute path (a case file's relative path is resolved against its
+  // folder). Empty: the spherical cap of R, h, phi. With a mesh, R and h still set the scales
+  // (the grid spacing h / cells, Zoelly's p_c of the protocol, the onset w / R < 0.03).
+  std::string mesh;
 };
 
 struct Material {

@@ -76,6 +76,13 @@ void write_table(std::ostream& out, const config::Case& c, const theory::Predict
   fmt::print(out, "  shell         R = {} mm, h = {} mm, phi = {} deg  (h/R = {:.4g})\n",
              number(c.shell.R * 1e3), number(c.shell.h * 1e3), number(c.shell.phi * deg),
              c.shell.h / c.shell.R);
+  if (!c.shell.mesh.empty()) {
+    fmt::print(out,
+               "  shell mesh    {}\n                the closed forms below are those of the "
+               "spherical cap of R, h, phi: they\n                predict this shell only as far "
+               "as it is that cap (docs/shells.md)\n",
+               c.shell.mesh);
+  }
   fmt::print(out, "  material      E = {} MPa, nu = {}, rho = {} kg/m^3\n",
              number(c.material.E * 1e-6), number(c.material.nu), number(c.material.rho));
   fmt::print(out,
@@ -129,6 +136,7 @@ nlohmann::json case_to_json(const config::Case& c) {
           {"R", c.shell.R},
           {"h", c.shell.h},
           {"phi", c.shell.phi},
+          {"mesh", c.shell.mesh.empty() ? nlohmann::json(nullptr) : nlohmann::json(c.shell.mesh)},
           {"E", c.material.E},
           {"nu", c.material.nu},
           {"rho", c.material.rho},

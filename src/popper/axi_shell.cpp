@@ -122,8 +122,8 @@ void AxiShell::load_state(std::istream& in, fem::RigidBody& container, double mu
   glue_to(container, mu, 0.0, time, steps);
 }
 
-void AxiShell::write_snapshot(const std::filesystem::path& path) const {
-  io::write_vtu(path, body_, dynamics_.positions(), dynamics_.velocities());
+void AxiShell::write_snapshot(const std::filesystem::path& path, double t) const {
+  io::write_vtu(path, body_, dynamics_.positions(), dynamics_.velocities(), t);
 }
 
 }  // namespace snapjump::popper

@@ -56,7 +56,10 @@ class AxiShell final : public ShellModel {
 
   void save_state(std::ostream& out) const override;
   void load_state(std::istream& in, fem::RigidBody& container, double mu) override;
-  void write_snapshot(const std::filesystem::path& path) const override;
+  void write_snapshot(const std::filesystem::path& path, double t) const override;
+  [[nodiscard]] double outer_rim_radius() const override {
+    return body_.nodes().r[static_cast<std::size_t>(body_.outer().back())];
+  }
 
   [[nodiscard]] const axi::Body& body() const { return body_; }
   [[nodiscard]] const axi::Dynamics& dynamics() const { return dynamics_; }

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "io/vtu.hpp"
+#include "mesh/msh_reader.hpp"
 #include "popper/state_io.hpp"
 
 namespace snapjump::popper {
@@ -16,12 +17,40 @@ namespace {
 constexpr double kG = config::kStandardGravity;
 
 std::unique_ptr<fem::Body> make_body(const config::Case& c, const Numerics& n) {
+  auto m = n.mesh_file.empty() ? mesh::make_cap_mesh(n.cap) : load_user_mesh(c);
   return std::make_unique<fem::Body>(
-      mesh::make_cap_mesh(n.cap),
-      fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+      std::move(m), fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
 }
 
 }  // namespace
+
+mesh::Mesh load_user_mesh(const config::Case& c) {
+  auto m = mesh::read_msh(c.shell.mesh);
+  const auto& X = m.nodes;
+  double cx = 0.0, cy = 0.0, rim_z = 0.0;
+  for (int a : m.clamped) {
+    cx += X.x[a];
+    cy += X.y[a];
+    rim_z += X.z[a];
+  }
+  const double k = 1.0 / static_cast<double>(m.clamped.size());
+  cx *= k;
+  cy *= k;
+  rim_z *= k;
+  if (!(rim_z > X.z[m.apex])) {
+    throw mesh::MeshError(fmt::format(
+        "{}: the clamped rim (mean z = {:.4g} mm) does not stand above the apex (z = {:.4g} mm): "
+        "the shell must open upward, its apex pointing down to the plate",
+        m.description, 1e3 * rim_z, 1e3 * X.z[m.apex]));
+  }
+  const double dz = -(c.shell.R + 0.5 * c.shell.h) - X.z[m.apex];
+  for (std::size_t a = 0; a < m.nodes.size(); ++a) {
+    m.nodes.x[a] -= cx;
+    m.nodes.y[a] -= cy;
+    m.nodes.z[a] += dz;
+  }
+  return m;
+}
 
 MpmShell::MpmShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p)
     : numerics_(n), body_(make_body(c, n)), delta_p_(std::move(delta_p)) {
@@ -52,18 +81,24 @@ MpmShell::MpmShell(const config::Case& c, const Numerics& n, std::function<doubl
 
 std::string MpmShell::describe() const {
   const auto& n = numerics_;
+  const std::string mesh =
+      n.mesh_file.empty()
+          ? fmt::format("{} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} layers)",
+                        body_->num_elements(), body_->num_nodes(), 1e3 * n.cap.element_size,
+                        n.cap.layers)
+          : fmt::format("{} ten-node tetrahedra, {} particles, read from {}", body_->num_elements(),
+                        body_->num_nodes(), n.mesh_file);
   return fmt::format(
       "  model       3D MPM (quadratic tetrahedra on particles, the plate through the grid)\n"
-      "  mesh        {} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} "
-      "layers)\n  grid        {:.3g} mm cells (h / {:.3g})\n  time step   {:.3g} us (elastic "
-      "bound {:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
-      body_->num_elements(), body_->num_nodes(), 1e3 * n.cap.element_size, n.cap.layers, 1e3 * n.dx,
-      n.cap.h / n.dx, 1e6 * time_step_.dt, 1e6 * time_step_.elastic, 1e6 * time_step_.grid,
-      time_step_.limiting);
+      "  mesh        {}\n  grid        {:.3g} mm cells (h / {:.3g})\n  time step   {:.3g} us "
+      "(elastic bound {:.3g} us, grid bound {:.3g} us at 2 m/s; {} limits)\n",
+      mesh, 1e3 * n.dx, n.cap.h / n.dx, 1e6 * time_step_.dt, 1e6 * time_step_.elastic,
+      1e6 * time_step_.grid, time_step_.limiting);
 }
 
 nlohmann::json MpmShell::numerics_json() const {
   return {{"model", "3d"},
+          {"mesh_file", numerics_.mesh_file},
           {"elements", body_->num_elements()},
           {"particles", body_->num_nodes()},
           {"element_size", numerics_.cap.element_size},
@@ -202,8 +237,15 @@ void MpmShell::load_state(std::istream& in, fem::RigidBody& container, double mu
   driver_.reset();
 }
 
-void MpmShell::write_snapshot(const std::filesystem::path& path) const {
-  io::write_vtu(path, *body_, stepper_->particles().x, stepper_->particles().v);
+void MpmShell::write_snapshot(const std::filesystem::path& path, double t) const {
+  io::write_vtu(path, *body_, stepper_->particles().x, stepper_->particles().v, t);
+}
+
+double MpmShell::outer_rim_radius() const {
+  const auto& X = body_->mesh().nodes;
+  double r = 0.0;
+  for (int a : outer_rim_) r += std::hypot(X.x[a], X.y[a]);
+  return outer_rim_.empty() ? 0.0 : r / static_cast<double>(outer_rim_.size());
 }
 
 }  // namespace snapjump::popper

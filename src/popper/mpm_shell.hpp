@@ -16,6 +16,12 @@
 
 namespace snapjump::popper {
 
+// The case's own shell (shell.mesh), placed as the generated cap is: the rim's centre on the z
+// axis, the apex (the lowest outer point) at z = -(R + h/2). Throws MeshError for a file
+// read_msh refuses and for a shell that does not open upward (its rim must stand above its
+// apex).
+mesh::Mesh load_user_mesh(const config::Case& c);
+
 class MpmShell final : public ShellModel {
  public:
   MpmShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p);
@@ -51,7 +57,8 @@ class MpmShell final : public ShellModel {
 
   void save_state(std::ostream& out) const override;
   void load_state(std::istream& in, fem::RigidBody& container, double mu) override;
-  void write_snapshot(const std::filesystem::path& path) const override;
+  void write_snapshot(const std::filesystem::path& path, double t) const override;
+  [[nodiscard]] double outer_rim_radius() const override;
 
   [[nodiscard]] const fem::Body& body() const { return *body_; }
   [[nodiscard]] const mpm::Stepper& stepper() const { return *stepper_; }

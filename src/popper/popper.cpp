@@ -46,6 +46,13 @@ Numerics resolve_numerics(const config::Case& c) {
   Numerics n;
   n.model = c.numerics.model;
   n.cap = mesh::cap_spec(c);
+  n.mesh_file = c.shell.mesh;
+  if (!n.mesh_file.empty() && n.model == config::Model::Axisymmetric) {
+    throw config::CaseError(fmt::format(
+        "{}: shell.mesh ({}) is a 3D shape; the axisymmetric model meshes the spherical cap of "
+        "R, h, phi itself: run it with numerics.model = \"3d\"",
+        c.source, n.mesh_file));
+  }
   n.axi_through =
       c.numerics.elements_through_thickness.value_or(axi_elements_through(c.numerics.resolution));
   n.axi_along =
@@ -100,6 +107,8 @@ void check_simulable(const config::Case& c) {
         "material.nu = 0.5 is incompressible: the simulator's compressible neo-Hookean body "
         "needs nu < 0.5 (use 0.49 for a nearly incompressible elastomer)");
   }
+  // A designer's mesh is read before anything is written: a defect is an input error.
+  if (!c.shell.mesh.empty() && c.numerics.model == config::Model::ThreeD) (void)load_user_mesh(c);
 }
 
 std::unique_ptr<ShellModel> make_shell_model(const config::Case& c, const Numerics& n,

@@ -28,6 +28,7 @@ inline constexpr double kTimeStepFactor = 0.5;
 struct Numerics {
   config::Model model = config::Model::ThreeD;
   mesh::CapSpec cap;                  // mesh of the shell (3D)
+  std::string mesh_file;              // a designer's own shell (.msh) instead of the cap (3D)
   double dx = 0.0;                    // grid spacing [m] (3D)
   int axi_through = 0;                // axisymmetric: elements through h
   int axi_along = 0;                  // axisymmetric: elements along the meridian

@@ -61,8 +61,9 @@ class ShellModel {
   // Of the shell's weight, g along -z [J].
   [[nodiscard]] virtual double potential_energy(double g) const = 0;
   [[nodiscard]] virtual double cavity_volume() const = 0;
-  [[nodiscard]] virtual double apex_z() const = 0;       // outer surface on the axis
-  [[nodiscard]] virtual double outer_rim_z() const = 0;  // outer rim circle
+  [[nodiscard]] virtual double apex_z() const = 0;            // outer surface on the axis
+  [[nodiscard]] virtual double outer_rim_z() const = 0;       // outer rim circle
+  [[nodiscard]] virtual double outer_rim_radius() const = 0;  // of the reference shape [m]
   // The plate's reaction in the last step [N].
   [[nodiscard]] virtual double plate_force() const = 0;
   // Where the plate carries load, as the camera sees it: the outermost radius of the outer
@@ -78,8 +79,8 @@ class ShellModel {
   // which it is on the plate, glued to `container`.
   virtual void save_state(std::ostream& out) const = 0;
   virtual void load_state(std::istream& in, fem::RigidBody& container, double mu) = 0;
-  // A ParaView snapshot of the current state (.vtu).
-  virtual void write_snapshot(const std::filesystem::path& path) const = 0;
+  // A ParaView snapshot of the current state (.vtu) at time t after the release [s].
+  virtual void write_snapshot(const std::filesystem::path& path, double t) const = 0;
 };
 
 // The discretisation that the case's numerics.model names; delta_p gives the pressure difference

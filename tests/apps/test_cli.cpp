@@ -11,6 +11,8 @@
 #include "app/cli.hpp"
 #include "config/case.hpp"
 #include "io/folder_lock.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mesh/msh_reader.hpp"
 #include "support/cli_runner.hpp"
 
 namespace snapjump::app {
@@ -352,6 +354,56 @@ TEST(Cli, RunRefusesAnIncompressibleMaterialBeforeWritingAnything) {
 
 namespace snapjump::app {
 namespace {
+
+// A designer's mesh with a defect is refused before anything is written, naming what is wrong.
+TEST(Cli, ADesignersMeshWithADefectIsNamedBeforeTheRunStarts) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_user_mesh";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  auto cap = mesh::make_cap_mesh(
+      {.R = 0.03, .h = 0.002, .phi = 1.396, .element_size = 0.008, .layers = 1});
+  const auto case_with = [&](const std::string& msh) {
+    const auto path = dir / (msh + ".toml");
+    std::ofstream(path) << "[shell]\nmesh = \"" << msh << "\"\nR = \"30 mm\"\nh = \"2 mm\"\n"
+                        << "[material]\nE = \"1.2 MPa\"\n[popper]\nnet_weight = \"0.48 N\"\n";
+    return path.string();
+  };
+  const auto refused = [&](const std::string& msh, const std::string& why) {
+    const auto out = dir / ("run-" + msh);
+    const auto r = run({"run", case_with(msh), "--resolution", "coarse", "--output", out.string()});
+    EXPECT_EQ(r.code, kExitBadInput) << msh;
+    EXPECT_NE(r.err.find(why), std::string::npos) << msh << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << msh;
+  };
+  // Upside down (turned about the x axis): the rim below the apex.
+  auto turned = cap;
+  for (std::size_t a = 0; a < turned.nodes.size(); ++a) {
+    turned.nodes.y[a] = -turned.nodes.y[a];
+    turned.nodes.z[a] = -turned.nodes.z[a];
+  }
+  mesh::write_msh(turned, dir / "turned.msh");
+  refused("turned.msh", "must open upward");
+  // Mirrored in z: every element turned inside out.
+  auto mirrored = cap;
+  for (auto& z : mirrored.nodes.z) z = -z;
+  mesh::write_msh(mirrored, dir / "mirrored.msh");
+  refused("mirrored.msh", "element");
+  // Not a mesh; a missing file.
+  std::ofstream(dir / "text.msh") << "hello\n";
+  refused("text.msh", "not a gmsh .msh file");
+  const auto missing = run({"run", case_with("absent.msh"), "--output", (dir / "x").string()});
+  EXPECT_EQ(missing.code, kExitBadInput);
+  EXPECT_NE(missing.err.find("shell.mesh"), std::string::npos) << missing.err;
+  // The axisymmetric model meshes its own cap.
+  mesh::write_msh(cap, dir / "cap.msh");
+  const auto axi = run(
+      {"run", case_with("cap.msh"), "--model", "axisymmetric", "--output", (dir / "axi").string()});
+  EXPECT_EQ(axi.code, kExitBadInput);
+  EXPECT_NE(axi.err.find("3D shape"), std::string::npos) << axi.err;
+  // `snapjump mesh` writes .msh files only.
+  const auto wrong = run({"mesh", "--output", (dir / "cap.vtk").string()});
+  EXPECT_EQ(wrong.code, kExitBadInput);
+}
 
 TEST(Cli, ResumeNeedsARunFolder) {
   const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_not_a_run";

@@ -1,11 +1,17 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <random>
+#include <sstream>
+#include <string>
 
 #include "fem/body.hpp"
 #include "fem/tet10.hpp"
+#include "io/vtu.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "theory/scaling.hpp"
 
@@ -292,6 +298,52 @@ TEST(Body, GatheredForcesEqualTheElementSums) {
     EXPECT_NEAR(f.x[a], sx[a], 1e-12 * scale);
     EXPECT_NEAR(f.z[a], sz[a], 1e-12 * scale);
   }
+}
+
+// A snapshot that ParaView can use: the node sets as 0/1 point arrays, the time as field data,
+// and the displacement measured from the reference moved with the container, so that a popper
+// lifted as a whole has none.
+TEST(Vtu, SnapshotCarriesSetsTimeAndTheShellsOwnMotion) {
+  const auto& body = coarse_cap();
+  const auto& m = body.mesh();
+  const double A[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, lift[3] = {0, 0, 0.005};
+  const auto x = map_points(m.nodes, A, lift);  // the whole shell 5 mm up with its container
+  mesh::Points v = x;
+  for (auto* c : {&v.x, &v.y, &v.z}) std::fill(c->begin(), c->end(), 0.0);
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_vtu_test.vtu";
+  io::write_vtu(path, body, x, v, 0.0123);
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  EXPECT_NE(s.find("Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">0.0123<"),
+            std::string::npos);
+  // The numbers of the array `name`, up to its </DataArray>.
+  const auto array = [&](const std::string& name) {
+    const auto at = s.find("Name=\"" + name + "\"");
+    EXPECT_NE(at, std::string::npos) << name;
+    const auto from = s.find('>', at) + 1, to = s.find("</DataArray>", from);
+    std::istringstream cells(s.substr(from, to - from));
+    std::vector<double> out;
+    for (double d; cells >> d;) out.push_back(d);
+    return out;
+  };
+  const auto count = [](const std::vector<double>& a) {
+    return static_cast<std::size_t>(std::count(a.begin(), a.end(), 1.0));
+  };
+  EXPECT_EQ(count(array("clamped")), m.clamped.size());
+  EXPECT_EQ(count(array("outer")), m.outer.size());
+  std::vector<char> inner(m.nodes.size(), 0);
+  for (const auto& f : m.inner_faces) {
+    for (int a : f) inner[static_cast<std::size_t>(a)] = 1;
+  }
+  EXPECT_EQ(count(array("inner")),
+            static_cast<std::size_t>(std::count(inner.begin(), inner.end(), 1)));
+  const auto u = array("displacement");
+  ASSERT_EQ(u.size(), 3 * m.nodes.size());
+  double largest = 0.0;
+  for (const double d : u) largest = std::max(largest, std::abs(d));
+  EXPECT_LT(largest, 1e-12);  // lifted as a whole: no motion of its own
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // run that went straight through. About two minutes on two cores (two preparations).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -115,6 +116,70 @@ TEST(RunResume, ARunIsNotContinuedWithOtherNumerics) {
   EXPECT_NE(err.str().find("other numerics than it started with"), std::string::npos) << err.str();
   EXPECT_NE(err.str().find("when it started"), std::string::npos) << err.str();
   EXPECT_EQ(read(dir / "summary.json"), summary);  // still paused, not failed
+}
+
+}  // namespace
+}  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+// The numbers of a series.csv, row by row (comment lines and the contact column left out).
+std::vector<std::vector<double>> numbers(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  std::vector<std::vector<double>> rows;
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<double> row;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) {
+      try {
+        row.push_back(std::stod(cell));
+      } catch (const std::exception&) {  // the contact state
+      }
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+// The cap that `snapjump mesh` writes, named in a case as [shell] mesh, runs as the cap the
+// simulator generates itself (the .msh text rounds the coordinates: equal to 1e-9). The run
+// folder keeps its own copy of the mesh, which case.toml names.
+TEST(UserMesh, TheWrittenCapReadBackRunsAsTheGeneratedOne) {
+  const auto base = std::filesystem::temp_directory_path() / "snapjump_user_mesh_test";
+  std::filesystem::remove_all(base);
+  std::filesystem::create_directories(base);
+  ASSERT_EQ(run({"mesh", "--resolution", "coarse", "--output", (base / "cap.msh").string()}), 0);
+  {
+    std::ifstream in(std::filesystem::path(SNAPJUMP_SOURCE_DIR) / "examples" / "default.toml");
+    std::ofstream out(base / "case.toml");
+    for (std::string line; std::getline(in, line);) {
+      out << line << '\n';
+      if (line == "[shell]") out << "mesh = \"cap.msh\"\n";
+    }
+  }
+  const auto mine = base / "mine", generated = base / "generated";
+  ASSERT_EQ(run({"run", (base / "case.toml").string(), "--resolution", "coarse", "--end-time",
+                 "1ms", "--quiet", "--output", mine.string()}),
+            0);
+  ASSERT_EQ(run({"run", "--resolution", "coarse", "--end-time", "1ms", "--quiet", "--output",
+                 generated.string()}),
+            0);
+  const auto a = numbers(mine / "series.csv"), b = numbers(generated / "series.csv");
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_GT(a.size(), 5U);
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ASSERT_EQ(a[i].size(), b[i].size());
+    for (std::size_t k = 0; k < a[i].size(); ++k) {
+      EXPECT_NEAR(a[i][k], b[i][k], 1e-9 * (1.0 + std::abs(b[i][k])))
+          << "row " << i << " col " << k;
+    }
+  }
+  EXPECT_TRUE(std::filesystem::exists(mine / "shell.msh"));
+  EXPECT_NE(read(mine / "case.toml").find("mesh = \"shell.msh\""), std::string::npos);
 }
 
 }  // namespace
