@@ -425,6 +425,97 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out, std::ostream& err) {
   return failed ? kExitBadInput : kExitOk;
 }
 
+// Levenshtein distance, case-insensitive.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      const bool same = std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                        std::tolower(static_cast<unsigned char>(b[j - 1]));
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (same ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// ", did you mean X?" for the nearest of `known` within two edits of `word`, or "".
+std::string suggestion(std::string_view word, const std::vector<std::string>& known,
+                       std::string_view prefix) {
+  std::string best;
+  std::size_t best_d = 3;
+  for (const auto& k : known) {
+    const auto d = edit_distance(word, k);
+    if (d < best_d) {
+      best_d = d;
+      best = k;
+    }
+  }
+  return best.empty() ? std::string() : fmt::format("; did you mean {}{}?", prefix, best);
+}
+
+// An unknown subcommand or --option in the command line, named with a suggestion, before CLI11
+// parses it (CLI11 would take `--r 30mm` as a case file "30mm" that does not exist, and
+// `snapjump analyse` as no subcommand at all). Nothing when every word is known.
+std::optional<std::string> unknown_word(CLI::App& app, int argc, const char* const* argv) {
+  std::vector<CLI::App*> chain{&app};
+  int k = 1;
+  // The subcommands named first (snapjump plot series ...).
+  while (k < argc) {
+    const std::string_view word = argv[k];
+    if (word.starts_with("-")) break;
+    CLI::App* next = nullptr;
+    std::vector<std::string> names;
+    for (auto* sub : chain.back()->get_subcommands({})) {
+      names.push_back(sub->get_name());
+      if (sub->get_name() == word) next = sub;
+    }
+    if (next == nullptr) {
+      if (names.empty() || chain.size() > 1) break;  // a positional argument of the subcommand
+      return fmt::format("unknown subcommand '{}' (the subcommands: {}){}", word,
+                         fmt::join(names, ", "), suggestion(word, names, ""));
+    }
+    chain.push_back(next);
+    ++k;
+  }
+  if (chain.size() > 1 && !chain.back()->get_subcommands({}).empty() && k < argc &&
+      !std::string_view(argv[k]).starts_with("-")) {
+    std::vector<std::string> names;
+    for (auto* sub : chain.back()->get_subcommands({})) names.push_back(sub->get_name());
+    return fmt::format("unknown subcommand '{}' of '{}' (its subcommands: {}){}", argv[k],
+                       chain.back()->get_name(), fmt::join(names, ", "),
+                       suggestion(argv[k], names, ""));
+  }
+  std::vector<std::string> known;
+  for (auto* level : chain) {
+    for (const auto* opt : level->get_options()) {
+      for (const auto& name : opt->get_lnames()) known.push_back(name);
+    }
+  }
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view word = argv[i];
+    if (!word.starts_with("--") || word.size() == 2) continue;
+    const auto name = word.substr(
+        2, word.find('=') == std::string_view::npos ? std::string_view::npos : word.find('=') - 2);
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    return fmt::format(
+        "unknown option --{} for 'snapjump{}'{}", name,
+        [&] {
+          std::string path;
+          for (std::size_t j = 1; j < chain.size(); ++j) {
+            path += " " + chain[j]->get_name();
+          }
+          return path;
+        }(),
+        suggestion(name, known, "--"));
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
@@ -548,6 +639,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   SweepCommand sweep_cmd(app);
   PlotCommand plot_cmd(app);
 
+  if (const auto unknown = unknown_word(app, argc, argv)) {
+    fmt::print(err, "error: {}\nRun with --help for more information.\n", *unknown);
+    return kExitBadInput;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

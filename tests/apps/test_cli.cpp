@@ -195,6 +195,24 @@ TEST(Cli, AnalyzeNamesTheBadCell) {
   EXPECT_NE(r.err.find(":3"), std::string::npos) << r.err;
 }
 
+TEST(Cli, UnknownWordsAreNamedWithASuggestion) {
+  const auto r = run({"predict", "--r", "30mm"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("unknown option --r for 'snapjump predict'; did you mean --R?"),
+            std::string::npos)
+      << r.err;
+  const auto sub = run({"analyse", "x.csv"});
+  EXPECT_EQ(sub.code, kExitBadInput);
+  EXPECT_NE(sub.err.find("unknown subcommand 'analyse'"), std::string::npos) << sub.err;
+  EXPECT_NE(sub.err.find("did you mean analyze?"), std::string::npos) << sub.err;
+  const auto nested = run({"plot", "seris", "x"});
+  EXPECT_NE(nested.err.find("did you mean series?"), std::string::npos) << nested.err;
+  const auto far = run({"run", "--zzzzzz"});
+  EXPECT_NE(far.err.find("unknown option --zzzzzz"), std::string::npos) << far.err;
+  EXPECT_EQ(far.err.find("did you mean"), std::string::npos) << far.err;
+  EXPECT_EQ(run({"predict", "--format=json"}).code, kExitOk);
+}
+
 TEST(Cli, AFlagThatChangesTheCaseSaysSoInTheTitle) {
   const auto r = run({"predict", example("R30_h1.5.toml"), "--h", "2mm", "--format", "json"});
   ASSERT_EQ(r.code, kExitOk) << r.err;
