@@ -17,6 +17,8 @@ packages=(
   libbenchmark-dev       # benchmarks (bench/)
   openmpi-bin libopenmpi-dev  # sweeps spread over processes (mpirun)
   gnuplot-nox            # figures (snapjump plot)
+  pybind11-dev python3-dev   # the Python module (python/)
+  python3-numpy python3-pytest  # its arrays and its tests
 )
 packages+=("$@")
 

@@ -518,7 +518,8 @@ std::optional<std::string> unknown_word(CLI::App& app, int argc, const char* con
 
 }  // namespace
 
-int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+            const CliHooks& hooks) {
   CLI::App app{
       "snapjump: predicts and simulates how elastic shells snap and jump.\n"
       "Start with `snapjump predict` (the theory for the paper's default popper), then "
@@ -709,11 +710,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
               "--resume continues a run as it was set up (its case.toml, its folder): give no "
               "case file, case values, --resolution, --model or --output with it");
         }
+        run_opts.stop_requested = hooks.stop_requested;
         return run_simulation(config::Case{}, run_opts, out, err);
       }
       auto c = run_case.load();
       if (const auto r = config::parse_resolution(run_resolution)) c.numerics.resolution = *r;
       if (const auto m = config::parse_model(run_model)) c.numerics.model = *m;
+      run_opts.stop_requested = hooks.stop_requested;
       return run_simulation(c, run_opts, out, err);
     }
   } catch (const config::CaseError& e) {

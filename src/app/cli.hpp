@@ -1,6 +1,7 @@
 // The snapjump command line, as a library function so that tests can run it in-process.
 #pragma once
 
+#include <functional>
 #include <ostream>
 
 namespace snapjump::app {
@@ -10,6 +11,14 @@ inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the program failed (I/O, numerics)
 inline constexpr int kExitBadInput = 2;  // bad command line or case file
 
-int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err);
+// What a program that embeds the command line (the Python module) can hook into.
+struct CliHooks {
+  // Asked now and then during a run (a few times a second): true stops it, with a checkpoint
+  // when it is past the release (the run can be resumed), as --pause-at does.
+  std::function<bool()> stop_requested;
+};
+
+int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
+            const CliHooks& hooks = {});
 
 }  // namespace snapjump::app

@@ -360,7 +360,15 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       // (the buckling and the grounding may end early).
       std::string current_phase;
       double phase_start = 0.0;
+      double last_stop_check = 0.0;
       const auto progress = [&](const std::string& phase, double t, double fraction) {
+        if (options.stop_requested && wall() - last_stop_check >= 0.25) {
+          last_stop_check = wall();
+          if (options.stop_requested()) {
+            throw std::runtime_error(fmt::format(
+                "stopped during the preparation ({}, t = {:.4f} s): nothing to resume", phase, t));
+          }
+        }
         if (phase != current_phase) {
           current_phase = phase;
           phase_start = wall();
@@ -400,6 +408,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     }
 
     std::string status = "completed";
+    double last_stop_check = 0.0;
     const double run_start = wall();
     const long start_steps = pop.steps();
     bool paused = false;
@@ -421,7 +430,11 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
           loop.next_snapshot += numerics.snapshot_interval;
           snapshot();
         }
-        const bool pause_now = options.pause_at && pop.time() + 1e-12 >= *options.pause_at;
+        bool pause_now = options.pause_at && pop.time() + 1e-12 >= *options.pause_at;
+        if (options.stop_requested && wall() - last_stop_check >= 0.25) {
+          last_stop_check = wall();
+          pause_now = pause_now || options.stop_requested();
+        }
         if (pop.time() + 1e-12 >= loop.next_checkpoint || pause_now) {
           loop.next_checkpoint += numerics.checkpoint_interval;
           write_checkpoint(dir, pop, loop);

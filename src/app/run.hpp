@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -20,6 +21,9 @@ struct RunOptions {
   // For tests of crash safety: on resume, fail (throw) after rewriting this many rows of the
   // series, as a run killed in the middle of the rewrite would stop.
   std::optional<std::size_t> fault_after_rewritten_rows;
+  // Asked a few times a second: true stops the run (after the release with a checkpoint and the
+  // status "paused", to resume; during the preparation with an error).
+  std::function<bool()> stop_requested;
 };
 
 // Runs the protocol (buckle, set, ground, release) and writes series.csv, summary.json,

@@ -1,0 +1,198 @@
+"""snapjump from Python: the theory, the contact solver, the analysis and the simulator of
+this repository (README.md, "Python"), with the same case keys, units and error messages as the
+command line.
+
+    import snapjump
+    p = snapjump.predict(R="30 mm", h="2 mm", net_weight="0.48 N")   # a dict, SI units
+    c = snapjump.contact(nu=0.45)
+    a = snapjump.analyze("record.csv", R="30 mm")                   # or columns / a DataFrame
+    d = snapjump.run(model="axisymmetric", resolution="coarse", progress=print)
+    r = snapjump.read_run(d)                                        # numpy arrays (+ pandas)
+
+Errors raise snapjump.SnapjumpError (bad input: snapjump.InputError) with the command line's
+message. Ctrl-C stops a run as --pause-at does: it can be resumed with run(resume=folder).
+"""
+import csv
+import json
+import os
+import re
+import tempfile
+
+from . import _snapjump
+
+__all__ = ["predict", "contact", "analyze", "run", "read_run", "read_sweep",
+           "SnapjumpError", "InputError"]
+
+
+class SnapjumpError(RuntimeError):
+    """snapjump failed; the message is the command line's."""
+
+
+class InputError(SnapjumpError, ValueError):
+    """Bad input (a case value, a unit, a file); the message names it, as the command line's."""
+
+
+def _flag(key):
+    # net_weight -> --net-weight; a dotted case key (shell.R) -> its flag's name (R).
+    return "--" + key.split(".")[-1].replace("_", "-")
+
+
+def _value(v):
+    if isinstance(v, bool) or v is None:
+        raise InputError(f"{v!r} is not a quantity; give a number (SI) or text with a unit")
+    return v if isinstance(v, str) else repr(float(v))
+
+
+def _call(args, progress=None):
+    code, out, err = _snapjump.cli([str(a) for a in args], progress)
+    if code == 0:
+        return out
+    message = "\n".join(line[len("error: "):] if line.startswith("error: ") else line
+                        for line in err.strip().splitlines()
+                        if line and not line.startswith("Run with --help")) or out.strip()
+    raise (InputError if code == 2 else SnapjumpError)(message)
+
+
+def _case_args(case, values):
+    args = [] if case is None else [os.fspath(case)]
+    for key, v in values.items():
+        args += [_flag(key), _value(v)]
+    return args
+
+
+def predict(case=None, **values):
+    """The closed-form theory for one popper: a dict (SI), as `snapjump predict --format json`.
+    `case` is a case file (or None: the paper's default popper); keyword arguments set case values
+    as the command line's flags do: R="30 mm", net_weight=0.48 (bare numbers are SI)."""
+    return json.loads(_call(["predict", *_case_args(case, values), "--format", "json"]))
+
+
+def contact(nu=0.5):
+    """The shell-plane contact solver's constants and the prefactor bounds at Poisson's ratio nu."""
+    return json.loads(_call(["contact", "--nu", repr(float(nu)), "--format", "json"]))
+
+
+def _write_columns(columns, path):
+    names = list(columns.keys())
+    if "t" not in names or "F" not in names:
+        raise InputError(f"the columns need t and F (the plate force); given: {', '.join(names)}")
+    data = [list(columns[n]) for n in names]
+    rows = len(data[0])
+    if any(len(d) != rows for d in data):
+        raise InputError("the columns have different lengths")
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(names)
+        for i in range(rows):
+            w.writerow([d[i] if isinstance(d[i], str) else repr(float(d[i])) for d in data])
+
+
+def analyze(data, case=None, R=None, complete=False, force_offset=None, columns=None, units=None):
+    """The characteristic quantities and the outcome of a time series (docs/analysis.md), as
+    `snapjump analyze --format json`. `data` is a CSV file (any format the command line reads), a
+    dict of columns (SI) or a pandas DataFrame with columns t and F and any of z, r, w, e,
+    delta_p, contact. R with its unit ("30 mm"); columns={"t": "Time (s)"} and units={"F": "mN"}
+    as --column and --unit."""
+    args = ["analyze"]
+    tmp = None
+    if isinstance(data, (str, os.PathLike)):
+        args.append(os.fspath(data))
+    else:
+        if hasattr(data, "to_dict") and hasattr(data, "columns"):  # a pandas DataFrame
+            data = {str(c): data[c].tolist() for c in data.columns}
+        fd, tmp = tempfile.mkstemp(suffix=".csv", prefix="snapjump-")
+        os.close(fd)
+        _write_columns(dict(data), tmp)
+        args.append(tmp)
+    try:
+        if case is not None:
+            args += ["--case", os.fspath(case)]
+        if R is not None:
+            args += ["--R", _value(R)]
+        if force_offset is not None:
+            args += ["--force-offset", _value(force_offset)]
+        if complete:
+            args.append("--complete")
+        for k, v in (columns or {}).items():
+            args += ["--column", f"{k}={v}"]
+        for k, v in (units or {}).items():
+            args += ["--unit", f"{k}={v}"]
+        return json.loads(_call(args + ["--format", "json"]))
+    finally:
+        if tmp:
+            os.remove(tmp)
+
+
+def run(case=None, output=None, resolution=None, model=None, end_time=None, resume=None,
+        progress=None, **values):
+    """Simulates the popper in this process (`snapjump run`) and returns its folder. progress is
+    called with each line the run prints (progress and results); Ctrl-C stops the run with a checkpoint past the release
+    (KeyboardInterrupt; continue with run(resume=folder))."""
+    if resume is not None:
+        args = ["run", "--resume", os.fspath(resume)]
+    else:
+        args = ["run", *_case_args(case, values)]
+        if output is not None:
+            args += ["--output", os.fspath(output)]
+        if resolution is not None:
+            args += ["--resolution", resolution]
+        if model is not None:
+            args += ["--model", model]
+        if end_time is not None:
+            args += ["--end-time", _value(end_time)]
+    out = _call(args, progress)
+    if resume is not None:
+        return os.fspath(resume)
+    m = re.search(r"^\s*output\s+(.+?)(?: \(that is .*\))?$", out, re.MULTILINE)
+    if not m:
+        raise SnapjumpError("snapjump run did not say where it wrote:\n" + out)
+    return m.group(1).strip()
+
+
+def _table(path):
+    """A CSV table as {column: numpy array} (text columns stay lists), and a pandas DataFrame
+    beside it when pandas is installed."""
+    import numpy as np
+    with open(path, newline="") as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+    if not rows:
+        raise InputError(f"{path}: empty")
+    header, body = rows[0], rows[1:]
+    out = {}
+    for k, name in enumerate(header):
+        cells = [r[k] if k < len(r) else "" for r in body]
+        try:
+            out[name] = np.array([float(c) if c != "" else np.nan for c in cells])
+        except ValueError:
+            out[name] = cells
+    try:
+        import pandas as pd
+        frame = pd.DataFrame(out)
+    except ImportError:
+        frame = None
+    return out, frame
+
+
+def read_run(folder):
+    """A run's folder: {"series": {column: array}, "summary": dict, "case": text, "frame":
+    DataFrame or None}."""
+    folder = os.fspath(folder)
+    series_path = os.path.join(folder, "series.csv")
+    if not os.path.isfile(series_path):
+        raise InputError(f"{folder}: not a snapjump run folder (no series.csv)")
+    series, frame = _table(series_path)
+    with open(os.path.join(folder, "summary.json")) as f:
+        summary = json.load(f)
+    case_path = os.path.join(folder, "case.toml")
+    case_text = open(case_path).read() if os.path.isfile(case_path) else None
+    return {"series": series, "summary": summary, "case": case_text, "frame": frame}
+
+
+def read_sweep(folder):
+    """A sweep's folder: {"table": {column: array}, "frame": DataFrame or None}."""
+    folder = os.fspath(folder)
+    path = folder if folder.endswith(".csv") else os.path.join(folder, "sweep.csv")
+    if not os.path.isfile(path):
+        raise InputError(f"{folder}: no sweep.csv (run `snapjump sweep FILE --table-only`)")
+    table, frame = _table(path)
+    return {"table": table, "frame": frame}

@@ -1,0 +1,136 @@
+"""The Python package against the command line and against closed forms: the same numbers, the
+same error messages, arrays out of a run. Run by `make test` (ctest PythonPackage)."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import snapjump
+
+SOURCE = os.environ.get("SNAPJUMP_SOURCE_DIR", os.path.join(os.path.dirname(__file__), "..", ".."))
+
+
+def test_predict_is_the_command_lines_json():
+    p = snapjump.predict(R="30 mm", h="2 mm", net_weight="0.48 N")
+    assert p["case"]["R"] == pytest.approx(0.03)
+    # Zoelly's pressure of the complete sphere, 2 E (h/R)^2 / sqrt(3 (1 - nu^2)), nu = 0.45.
+    E, h, R, nu = 1.2e6, 2e-3, 30e-3, 0.45
+    p_c = 2 * E * (h / R) ** 2 / math.sqrt(3 * (1 - nu * nu))
+    assert p["quantities"]["p_c"]["lower"] == pytest.approx(p_c, rel=1e-12)
+    # F_c = E h^3 / R
+    assert p["quantities"]["F_c"]["lower"] == pytest.approx(E * h ** 3 / R, rel=1e-12)
+    # Bare numbers are SI; the same popper gives the same numbers.
+    q = snapjump.predict(R=0.03, h=0.002, net_weight=0.48)
+    assert q["quantities"] == p["quantities"]
+    # A case file and a value on top of it, as on the command line.
+    r = snapjump.predict(os.path.join(SOURCE, "examples", "R30_h1.5.toml"), mu=0.6)
+    assert r["case"]["h"] == pytest.approx(1.5e-3) and r["case"]["mu"] == pytest.approx(0.6)
+
+
+def test_errors_carry_the_command_lines_message():
+    with pytest.raises(snapjump.InputError, match=r"a length"):
+        snapjump.predict(R="30 N")
+    with pytest.raises(snapjump.InputError, match=r"unknown option --zzz"):
+        snapjump.predict(zzz=1)
+    with pytest.raises(snapjump.InputError):
+        snapjump.contact(nu=0.7)
+
+
+def test_contact_bounds():
+    c = snapjump.contact(nu=0.5)
+    assert c["N_plus"]["N"] == pytest.approx(76.94, rel=2e-3)  # the paper's N+
+    lo, hi = c["bounds"]["alpha_F"]["lower"], c["bounds"]["alpha_F"]["upper"]
+    assert 0 < lo < hi
+
+
+def _jump_columns():
+    # The analysis tests' reference jump (tests/measure/test_analysis.cpp): onset at 20.05 ms,
+    # F* = 2 N at 22 ms, launch at 25.92 ms.
+    t = np.arange(0, 1501) * 1e-4
+    c = (5e-3 - 0.9e-3) / 20.05e-3
+    w = np.maximum(5e-3 - c * t, 0.0)
+    F = np.where(t < 21e-3, 0.5,
+                 np.where(t < 22e-3, 0.5 + 1.5 * (t - 21e-3) / 1e-3,
+                          np.where(t < 26e-3, 2.0 * (1 - (t - 22e-3) / 4e-3), 0.0)))
+    return {"t": t, "F": F, "w": w}
+
+
+def test_analyze_columns_a_dataframe_and_a_file(tmp_path):
+    cols = _jump_columns()
+    a = snapjump.analyze(cols, R="30 mm", complete=True)
+    assert a["outcome"] == "Jump"
+    q = a["quantities"]
+    assert q["t_onset"]["value"] == pytest.approx(20.05e-3, abs=1e-9)
+    assert q["F_star"]["value"] == pytest.approx(2.0, rel=1e-9)
+    assert q["t_launch"]["value"] == pytest.approx(25.92e-3, abs=1e-8)
+    path = tmp_path / "r.csv"
+    with open(path, "w") as f:
+        f.write("Time (s);Fz (N);w (mm)\n")
+        for i in range(len(cols["t"])):
+            f.write(f"{cols['t'][i]:.6f};{cols['F'][i]:.6f};{1e3 * cols['w'][i]:.6f}\n")
+    b = snapjump.analyze(path, R=0.03)
+    assert b["outcome"] == "Jump"
+    assert b["quantities"]["F_star"]["value"] == pytest.approx(2.0, rel=1e-6)
+    try:
+        import pandas as pd
+    except ImportError:
+        return
+    d = snapjump.analyze(pd.DataFrame(cols), R="30 mm")
+    assert d["quantities"]["F_star"]["value"] == pytest.approx(2.0, rel=1e-9)
+
+
+def test_analyze_refuses_columns_without_force():
+    with pytest.raises(snapjump.InputError, match="t and F"):
+        snapjump.analyze({"t": [0, 1]})
+
+
+def test_a_short_run_in_process_with_progress_and_arrays(tmp_path):
+    lines = []
+    folder = snapjump.run(model="axisymmetric", resolution="coarse", end_time="5 ms",
+                          output=tmp_path / "run", progress=lines.append)
+    assert os.path.samefile(folder, tmp_path / "run")
+    r = snapjump.read_run(folder)
+    t = r["series"]["t"]
+    assert isinstance(t, np.ndarray) and t[0] == 0.0 and t[-1] == pytest.approx(5e-3, abs=2e-4)
+    assert np.all(np.diff(t) > 0)
+    assert r["summary"]["status"].startswith("completed")
+    assert any(line.strip().startswith("prepared") for line in lines)
+    with pytest.raises(snapjump.InputError, match="not a snapjump run folder"):
+        snapjump.read_run(tmp_path)
+
+
+def test_a_failing_progress_callback_stops_the_run(tmp_path):
+    def boom(line):
+        raise RuntimeError("stop here")
+    with pytest.raises(RuntimeError, match="stop here"):
+        snapjump.run(model="axisymmetric", resolution="coarse", end_time="50 ms",
+                     output=tmp_path / "run", progress=boom)
+
+
+def test_read_sweep(tmp_path):
+    path = tmp_path / "sweep.csv"
+    path.write_text("run,status,outcome,alpha_F [1]\nrun-0000,completed,Jump,5.5\n"
+                    "run-0001,failed,,\n")
+    s = snapjump.read_sweep(tmp_path)
+    assert s["table"]["outcome"] == ["Jump", ""]
+    assert s["table"]["alpha_F [1]"][0] == 5.5 and math.isnan(s["table"]["alpha_F [1]"][1])
+
+
+def test_ctrl_c_stops_a_run_that_can_be_resumed(tmp_path):
+    import signal
+
+    def interrupt_once_prepared(line):
+        if line.strip().startswith("prepared"):
+            os.kill(os.getpid(), signal.SIGINT)  # as Ctrl-C would
+
+    folder = tmp_path / "run"
+    with pytest.raises(KeyboardInterrupt):
+        snapjump.run(model="axisymmetric", resolution="coarse", end_time="40 ms", output=folder,
+                     progress=interrupt_once_prepared)
+    summary = snapjump.read_run(folder)["summary"]
+    assert summary["status"].startswith("paused")
+    snapjump.run(resume=folder)
+    r = snapjump.read_run(folder)
+    assert r["summary"]["status"].startswith("completed")
+    assert r["series"]["t"][-1] == pytest.approx(40e-3, abs=2e-4)
