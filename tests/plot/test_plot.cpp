@@ -491,10 +491,9 @@ TEST_F(Plot, SeriesWithAnExperimentBesideItInAWindow) {
   // A record in another spelling, named by --column and --unit as for analyze.
   const auto other = dir_ / "zeit.csv";
   std::ofstream(other) << "Zeit;Kraft\n0;500\n10;2500\n20;0\n30;0\n";
-  const auto mapped =
-      run({"plot", "series", run_dir.string(), "--experiment", other.string(), "--column",
-           "t=Zeit", "--column", "F=Kraft", "--unit", "t=ms", "--unit", "F=mN", "--output",
-           (dir_ / "zeit.png").string()});
+  const auto mapped = run({"plot", "series", run_dir.string(), "--experiment", other.string(),
+                           "--column", "t=Zeit", "--column", "F=Kraft", "--unit", "t=ms", "--unit",
+                           "F=mN", "--output", (dir_ / "zeit.png").string()});
   ASSERT_EQ(mapped.code, app::kExitOk) << mapped.err;
   EXPECT_TRUE(contains(slurp(dir_ / "zeit.gp"), "'experiment F'"));
   // A window that ends before it starts.

@@ -81,9 +81,8 @@ Incline block_on_incline(double mu, double tan_alpha, double t_end) {
   Incline out;
   out.drift = mean(s.particles().x.x) - mean(x0.x);
   out.acceleration = (mean(s.particles().v.x) - v1) / (s.time() - start);
-  std::printf(
-      "  tan(alpha) = %.2f, mu = %.2f: drift %.5f mm in %.0f ms, acceleration %.4f m/s^2\n",
-      tan_alpha, mu, 1e3 * out.drift, 1e3 * t_end, out.acceleration);
+  std::printf("  tan(alpha) = %.2f, mu = %.2f: drift %.5f mm in %.0f ms, acceleration %.4f m/s^2\n",
+              tan_alpha, mu, 1e3 * out.drift, 1e3 * t_end, out.acceleration);
   return out;
 }
 
@@ -96,9 +95,8 @@ TEST(FrictionContact, BlockOnAnInclineSticksBelowTheFrictionAngleAndSlidesAbove)
     const double alpha = std::atan(tan_alpha);
     return kG * (std::sin(alpha) - m * std::cos(alpha));
   };
-  std::printf(
-      "  theory: %.4f m/s^2 without friction, 0 held, %.4f m/s^2 sliding with friction\n",
-      slope(0.25, 0.0), slope(0.75, mu));
+  std::printf("  theory: %.4f m/s^2 without friction, 0 held, %.4f m/s^2 sliding with friction\n",
+              slope(0.25, 0.0), slope(0.75, mu));
   // Without friction: g sin(alpha).
   EXPECT_NEAR(free.acceleration / slope(0.25, 0.0), 1.0, 0.02);
   // Below the friction angle the block stays where it was put: it moves less than 1 % of the
