@@ -19,6 +19,7 @@ packages=(
   gnuplot-nox            # figures (snapjump plot)
   pybind11-dev python3-dev   # the Python module (python/)
   python3-numpy python3-pytest  # its arrays and its tests
+  help2man               # the man page (cmake --install)
 )
 packages+=("$@")
 
