@@ -53,8 +53,46 @@ def _call(args, progress=None):
     raise (InputError if code == 2 else SnapjumpError)(message)
 
 
-def _case_args(case, values):
-    args = [] if case is None else [os.fspath(case)]
+def _toml_text(case):
+    # A case given as a dict of tables, {"shell": {"R": "30 mm"}, "title": "..."}, as TOML text.
+    def value(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, (int, float)):
+            return repr(v)
+        return json.dumps(str(v))  # a TOML basic string: JSON's escapes are TOML's
+    lines = [f"{k} = {value(v)}" for k, v in case.items() if not isinstance(v, dict)]
+    for table, keys in case.items():
+        if isinstance(keys, dict):
+            lines.append(f"[{table}]")
+            lines += [f"{k} = {value(v)}" for k, v in keys.items()]
+    return "\n".join(lines) + "\n"
+
+
+class _CaseFile:
+    """The case as a file for the command line: a path as given, a dict written to a temporary
+    file (removed afterwards)."""
+
+    def __init__(self, case):
+        self.case, self.tmp = case, None
+
+    def __enter__(self):
+        if self.case is None:
+            return []
+        if isinstance(self.case, dict):
+            fd, self.tmp = tempfile.mkstemp(suffix=".toml", prefix="snapjump-case-")
+            with os.fdopen(fd, "w") as f:
+                f.write(_toml_text(self.case))
+            return [self.tmp]
+        return [os.fspath(self.case)]
+
+    def __exit__(self, *exc):
+        if self.tmp:
+            os.remove(self.tmp)
+
+
+def _case_args(case_files, values):
+    args = list(case_files)
     for key, v in values.items():
         args += [_flag(key), _value(v)]
     return args
@@ -62,9 +100,12 @@ def _case_args(case, values):
 
 def predict(case=None, **values):
     """The closed-form theory for one popper: a dict (SI), as `snapjump predict --format json`.
-    `case` is a case file (or None: the paper's default popper); keyword arguments set case values
-    as the command line's flags do: R="30 mm", net_weight=0.48 (bare numbers are SI)."""
-    return json.loads(_call(["predict", *_case_args(case, values), "--format", "json"]))
+    `case` is a case file, a dict of its tables ({"shell": {"R": "30 mm", "h": "2 mm"}, ...}, the
+    same keys and unit strings as the TOML files), or None (the paper's default popper); keyword
+    arguments set case values as the command line's flags do: R="30 mm", net_weight=0.48 (bare
+    numbers are SI)."""
+    with _CaseFile(case) as files:
+        return json.loads(_call(["predict", *_case_args(files, values), "--format", "json"]))
 
 
 def contact(nu=0.5):
@@ -128,19 +169,20 @@ def run(case=None, output=None, resolution=None, model=None, end_time=None, resu
     """Simulates the popper in this process (`snapjump run`) and returns its folder. progress is
     called with each line the run prints (progress and results); Ctrl-C stops the run with a checkpoint past the release
     (KeyboardInterrupt; continue with run(resume=folder))."""
-    if resume is not None:
-        args = ["run", "--resume", os.fspath(resume)]
-    else:
-        args = ["run", *_case_args(case, values)]
-        if output is not None:
-            args += ["--output", os.fspath(output)]
-        if resolution is not None:
-            args += ["--resolution", resolution]
-        if model is not None:
-            args += ["--model", model]
-        if end_time is not None:
-            args += ["--end-time", _value(end_time)]
-    out = _call(args, progress)
+    with _CaseFile(None if resume is not None else case) as files:
+        if resume is not None:
+            args = ["run", "--resume", os.fspath(resume)]
+        else:
+            args = ["run", *_case_args(files, values)]
+            if output is not None:
+                args += ["--output", os.fspath(output)]
+            if resolution is not None:
+                args += ["--resolution", resolution]
+            if model is not None:
+                args += ["--model", model]
+            if end_time is not None:
+                args += ["--end-time", _value(end_time)]
+        out = _call(args, progress)
     if resume is not None:
         return os.fspath(resume)
     m = re.search(r"^\s*output\s+(.+?)(?: \(that is .*\))?$", out, re.MULTILINE)

@@ -23,6 +23,12 @@ def test_predict_is_the_command_lines_json():
     # Bare numbers are SI; the same popper gives the same numbers.
     q = snapjump.predict(R=0.03, h=0.002, net_weight=0.48)
     assert q["quantities"] == p["quantities"]
+    # A case as a dict of tables, with the TOML files' keys and unit strings.
+    d = snapjump.predict({"title": "mine", "shell": {"R": "30 mm", "h": "2 mm"},
+                          "material": {"E": "1.2 MPa"}, "popper": {"net_weight": "0.48 N"}})
+    assert d["quantities"] == p["quantities"] and d["case"]["title"] == "mine"
+    with pytest.raises(snapjump.InputError, match="unknown key 'Rr'"):
+        snapjump.predict({"shell": {"Rr": "30 mm"}})
     # A case file and a value on top of it, as on the command line.
     r = snapjump.predict(os.path.join(SOURCE, "examples", "R30_h1.5.toml"), mu=0.6)
     assert r["case"]["h"] == pytest.approx(1.5e-3) and r["case"]["mu"] == pytest.approx(0.6)
