@@ -26,9 +26,9 @@ using namespace snapjump;
 constexpr double kFactors[] = {0.4, 0.5, 0.6, 0.7, 0.8, 1.0};
 
 void scan_fem(const fem::Body& body) {
-  for (const double cfl : kFactors) {
+  for (const double factor : kFactors) {
     fem::ExplicitOptions o;
-    o.cfl = cfl;
+    o.time_step_factor = factor;
     o.pressure = [](double t) { return 3000.0 * std::min(1.0, t / 0.002); };
     fem::ExplicitDriver d(body, o);
     bool stable = true;
@@ -38,14 +38,14 @@ void scan_fem(const fem::Body& body) {
     } catch (const std::exception&) {
       stable = false;
     }
-    std::printf("factor %.1f (dt %.3g us): %s\n", cfl, 1e6 * d.dt(),
+    std::printf("factor %.1f (dt %.3g us): %s\n", factor, 1e6 * d.dt(),
                 stable ? "stable" : "unstable");
   }
 }
 
 void scan_mpm(const fem::Body& body, double dx) {
   constexpr double kSpeed = 2.0;  // m/s, the popper's expected top speed (mpm_shell.cpp)
-  for (const double cfl : kFactors) {
+  for (const double factor : kFactors) {
     // The cap hangs apex down (the popper's orientation), its apex 0.2 mm above the plate.
     mpm::BodyForces forces(body, 9.80665, [](double) { return 3000.0; });
     auto particles = mpm::particles_of(body);
@@ -54,7 +54,7 @@ void scan_mpm(const fem::Body& body, double dx) {
       particles.x.z[i] += 0.0002 - zmin;
       particles.v.z[i] = -kSpeed;
     }
-    const double dt = body.stable_time_step(cfl);
+    const double dt = body.stable_time_step(factor);
     mpm::Stepper s(std::move(particles), forces, {dt, dx, 0.5});
     mpm::RigidBody container;
     container.mass = 0.3;
@@ -79,7 +79,7 @@ void scan_mpm(const fem::Body& body, double dx) {
     } catch (const std::exception& e) {
       verdict = std::string("unstable: ") + e.what();
     }
-    std::printf("factor %.1f (dt %.3g us, %.1f ms): %s; largest kinetic energy %.3g J\n", cfl,
+    std::printf("factor %.1f (dt %.3g us, %.1f ms): %s; largest kinetic energy %.3g J\n", factor,
                 1e6 * dt, 6e6 * dt, verdict.c_str(), peak);
   }
 }

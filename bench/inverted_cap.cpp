@@ -110,7 +110,7 @@ int main(int argc, char** argv) {
           mesh::make_cap_mesh({.R = R, .h = h, .phi = phi, .element_size = size, .layers = layers}),
           material);
       fem::ExplicitOptions o;
-      o.cfl = 0.4;
+      o.time_step_factor = 0.4;
       o.damping = damping;
       o.pressure = [&p](double) { return p; };
       fem::ExplicitDriver d(body, o);

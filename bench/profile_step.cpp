@@ -27,7 +27,7 @@ int main(int argc, char** argv) {
                        fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
   mpm::BodyForces forces(body, config::kStandardGravity, [](double) { return 1000.0; });
   mpm::Stepper s(mpm::particles_of(body), forces,
-                 {body.stable_time_step(numerics.cfl), numerics.dx, 0.5});
+                 {body.stable_time_step(numerics.time_step_factor), numerics.dx, 0.5});
   mpm::RigidBody container;
   container.mass = 0.04;
   s.add_rule(std::make_unique<mpm::ClampRule>(container));

@@ -719,13 +719,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       run_opts.stop_requested = hooks.stop_requested;
       return run_simulation(c, run_opts, out, err);
     }
-  } catch (const config::CaseError& e) {
-    fmt::print(err, "error: {}\n", e.what());
-    return kExitBadInput;
-  } catch (const measure::SeriesError& e) {
-    fmt::print(err, "error: {}\n", e.what());
-    return kExitBadInput;
-  } catch (const mesh::MeshError& e) {
+  } catch (const InputError& e) {  // a case, a unit, a series, a mesh, a sweep file, a figure
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {

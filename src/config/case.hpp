@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/input_error.hpp"
 #include "config/units.hpp"
 
 namespace snapjump::config {
@@ -111,9 +112,9 @@ struct Case {
 };
 
 // Bad input. what() is the whole message, naming the key and where it was written.
-class CaseError : public std::runtime_error {
+class CaseError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // A value given outside the file, e.g. on the command line: key "shell.R", text "30mm",

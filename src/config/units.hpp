@@ -10,6 +10,8 @@
 #include <string>
 #include <string_view>
 
+#include "config/input_error.hpp"
+
 namespace snapjump::units {
 
 // What kind of quantity a value must be. Each has an SI unit that the parser converts to.
@@ -36,9 +38,9 @@ std::string_view si_unit(Dimension d);
 std::string_view example(Dimension d);
 
 // A value that could not be understood. The message does not name the key: the caller adds it.
-class UnitError : public std::runtime_error {
+class UnitError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 class UnitParser {

@@ -175,8 +175,8 @@ double Body::quadrature_volume() const {
   return v;
 }
 
-double Body::stable_time_step(double cfl) const {
-  return cfl * min_spacing_ / material_.p_wave_speed();
+double Body::stable_time_step(double factor) const {
+  return factor * min_spacing_ / material_.p_wave_speed();
 }
 
 namespace {

@@ -52,8 +52,8 @@ class Body {
   [[nodiscard]] double quadrature_volume() const;
   // Smallest distance between two nodes of one element, in the reference configuration.
   [[nodiscard]] double min_node_spacing() const { return min_spacing_; }
-  // dt = cfl * min_node_spacing / p_wave_speed.
-  [[nodiscard]] double stable_time_step(double cfl) const;
+  // dt = factor * min_node_spacing / p_wave_speed (the elastic time step factor).
+  [[nodiscard]] double stable_time_step(double factor) const;
 
   // Working memory of internal_forces: one per caller that calls it every step.
   struct ForceScratch {

@@ -25,7 +25,7 @@ BuckleResult buckle_under_pressure(const Body& body, const BuckleOptions& o) {
     return o.p_fast + (o.p_max - o.p_fast) * std::min(1.0, (t - o.fast_time) / o.ramp_time);
   };
   ExplicitOptions eo;
-  eo.cfl = o.cfl;
+  eo.time_step_factor = o.time_step_factor;
   eo.damping = o.damping;
   eo.pressure = [&](double t) { return held >= 0.0 ? held : ramp(t); };
   ExplicitDriver d(body, eo);

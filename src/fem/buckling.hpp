@@ -17,7 +17,7 @@ struct BuckleOptions {
   double ramp_time = 0.0;  // time from p_fast to p_max [s]
   double damping = 0.0;    // mass-proportional damping [1/s]
   double hold_time = 0.0;  // after the snap, time held at the snap pressure [s]
-  double cfl = 0.5;
+  double time_step_factor = 0.5;
   // The onset of the snap is declared when the cavity volume shrinks faster than onset_factor
   // times its quasi-static rate (measured during the first half of the slow ramp). From then on
   // the pressure is held.

@@ -9,7 +9,7 @@ ExplicitDriver::ExplicitDriver(const Body& body, ExplicitOptions options)
     : body_(body),
       options_(std::move(options)),
       tuner_(parallel::ThreadTuner::for_process(options_.tune_threads)) {
-  dt_ = options_.dt > 0.0 ? options_.dt : body_.stable_time_step(options_.cfl);
+  dt_ = options_.dt > 0.0 ? options_.dt : body_.stable_time_step(options_.time_step_factor);
   if (!(dt_ > 0.0) || !std::isfinite(dt_))
     throw std::invalid_argument("explicit driver: bad time step");
   const std::size_t n = body_.num_nodes();

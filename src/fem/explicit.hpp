@@ -13,10 +13,10 @@
 namespace snapjump::fem {
 
 struct ExplicitOptions {
-  double dt = 0.0;       // time step [s]; 0: stable_time_step(cfl)
-  double cfl = 0.3;      // used when dt = 0
-  double damping = 0.0;  // mass-proportional damping coefficient c [1/s]: m a = f - c m v
-  double gravity = 0.0;  // [m/s^2], acting along -z
+  double dt = 0.0;                // time step [s]; 0: stable_time_step(time_step_factor)
+  double time_step_factor = 0.3;  // used when dt = 0
+  double damping = 0.0;           // mass-proportional damping coefficient c [1/s]: m a = f - c m v
+  double gravity = 0.0;           // [m/s^2], acting along -z
   // Pressure difference (outside minus inside) on the inner faces as a function of time [Pa].
   std::function<double(double)> pressure;
   // Displacement of the clamp frame along z as a function of time, and its velocity [m, m/s].

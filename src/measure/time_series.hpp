@@ -21,14 +21,15 @@
 #include <utility>
 #include <vector>
 
+#include "config/input_error.hpp"
 #include "config/units.hpp"
 
 namespace snapjump::measure {
 
 // Bad series input or use. what() names the file, line and column where there is one.
-class SeriesError : public std::runtime_error {
+class SeriesError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // What touches the plate: nothing, a ring (the inverted shell's rim of contact), or a disk.

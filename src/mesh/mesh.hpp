@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "config/input_error.hpp"
+
 namespace snapjump::mesh {
 
 // Structure of arrays: node a is at (x[a], y[a], z[a]).
@@ -38,9 +40,9 @@ struct Mesh {
 };
 
 // A mesh that cannot be used. what() says what is wrong and where.
-class MeshError : public std::runtime_error {
+class MeshError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // Checks element validity (positive Jacobian at every node and quadrature point, no degenerate

@@ -10,13 +10,15 @@
 #include <string_view>
 #include <vector>
 
+#include "config/input_error.hpp"
+
 namespace snapjump::plot {
 
 // Bad input for a figure: a missing file or column, an empty table. what() names the file and
 // the column. The command line exits with status 2.
-class PlotInputError : public std::runtime_error {
+class PlotInputError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // gnuplot is missing or failed. what() names the script and quotes gnuplot's message. The

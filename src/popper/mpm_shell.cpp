@@ -76,7 +76,7 @@ MpmShell::MpmShell(const config::Case& c, const Numerics& n, std::function<doubl
   forces_ = std::make_unique<mpm::BodyForces>(*body_, kG, [this](double) { return delta_p_(); });
   // The grid bound assumes speeds up to 2 m/s (a jump of 20 cm); faster particles stop the run
   // with a StepError from the stepper's own CFL check.
-  time_step_ = mpm::choose_time_step(body_->stable_time_step(n.cfl), n.dx, 2.0, 0.5);
+  time_step_ = mpm::choose_time_step(body_->stable_time_step(n.time_step_factor), n.dx, 2.0, 0.5);
 }
 
 std::string MpmShell::describe() const {
@@ -124,7 +124,7 @@ const mesh::Points& MpmShell::positions() const {
 
 void MpmShell::start_held(double damping) {
   fem::ExplicitOptions eo;
-  eo.cfl = numerics_.cfl;
+  eo.time_step_factor = numerics_.time_step_factor;
   eo.damping = damping;
   eo.pressure = [this](double) { return delta_p_(); };
   driver_ = std::make_unique<fem::ExplicitDriver>(*body_, eo);

@@ -68,7 +68,7 @@ Numerics resolve_numerics(const config::Case& c) {
       c.numerics.grid_spacing.value_or(c.shell.h / grid_cells_per_thickness(c.numerics.resolution));
   n.dx = std::min(n.dx, n.cap.element_size);
   if (c.numerics.end_time) n.end_time = *c.numerics.end_time;
-  n.cfl = c.numerics.time_step_factor.value_or(kTimeStepFactor);
+  n.time_step_factor = c.numerics.time_step_factor.value_or(kTimeStepFactor);
   // Damping of the preparation phases: a third of the shell's membrane frequency sqrt(E/rho)/R.
   n.prep_damping = 0.3 * std::sqrt(c.material.E / c.material.rho) / c.shell.R;
   return n;

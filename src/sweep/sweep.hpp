@@ -27,13 +27,14 @@
 #include <vector>
 
 #include "config/case.hpp"
+#include "config/input_error.hpp"
 
 namespace snapjump::sweep {
 
 // Bad sweep file or output folder; what() names the file, the key and what was expected.
-class SweepError : public std::runtime_error {
+class SweepError : public InputError {
  public:
-  using std::runtime_error::runtime_error;
+  using InputError::InputError;
 };
 
 // One case value: key "popper.net_weight", text "0.48 N" (a bare number is SI), origin for

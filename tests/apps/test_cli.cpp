@@ -6,14 +6,18 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "app/cli.hpp"
 #include "config/case.hpp"
 #include "io/folder_lock.hpp"
+#include "measure/time_series.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mesh/msh_reader.hpp"
+#include "plot/gnuplot.hpp"
 #include "support/cli_runner.hpp"
+#include "sweep/sweep.hpp"
 
 namespace snapjump::app {
 namespace {
@@ -495,6 +499,30 @@ TEST(Cli, PauseAtNeedsATime) {
   const auto r = run({"run", "--pause-at", "3 mm"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("--pause-at"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+// Every error that bad input causes has one base, which the command line maps to status 2.
+static_assert(std::is_base_of_v<InputError, config::CaseError>);
+static_assert(std::is_base_of_v<InputError, units::UnitError>);
+static_assert(std::is_base_of_v<InputError, measure::SeriesError>);
+static_assert(std::is_base_of_v<InputError, mesh::MeshError>);
+static_assert(std::is_base_of_v<InputError, sweep::SweepError>);
+static_assert(std::is_base_of_v<InputError, plot::PlotInputError>);
+
+TEST(Cli, AnInputErrorOfEachKindIsStatusTwo) {
+  // A bad unit (units), a bad case key (config), a bad record (measure), a bad mesh (mesh).
+  EXPECT_EQ(run({"predict", "--R", "3 N"}).code, kExitBadInput);
+  EXPECT_EQ(run({"predict", "--nu", "abc"}).code, kExitBadInput);
+  const auto dir = std::filesystem::temp_directory_path();
+  std::ofstream(dir / "snapjump_cli_kind.csv") << "t,F\n0,x\n";
+  EXPECT_EQ(run({"analyze", (dir / "snapjump_cli_kind.csv").string()}).code, kExitBadInput);
+  EXPECT_EQ(run({"mesh", "--h", "0 mm", "--output", (dir / "k.msh").string()}).code, kExitBadInput);
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ TEST(ShellValidation, LameThickSphereExactSolution) {
   };
   const auto& X = body.mesh().nodes;
   ExplicitOptions o;
-  o.cfl = 0.5;
+  o.time_step_factor = 0.5;
   o.damping = 1000.0;
   o.pressure = [&](double) { return dp; };
   o.clamp_displacement = [&](int n) {
@@ -71,7 +71,7 @@ TEST(ShellValidation, MembraneStateUnderSmallPressure) {
       mesh::make_cap_mesh({.R = R, .h = h, .phi = kPhi, .element_size = 0.003, .layers = 1}),
       Material::from_young(kE, nu, kRho));
   ExplicitOptions o;
-  o.cfl = 0.5;
+  o.time_step_factor = 0.5;
   o.damping = 1000.0;
   o.pressure = [&](double t) { return dp * std::min(1.0, t / 0.002); };
   ExplicitDriver d(body, o);
