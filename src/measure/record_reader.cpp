@@ -12,7 +12,6 @@
 #include <istream>
 #include <map>
 #include <numeric>
-#include <regex>
 #include <system_error>
 #include <utility>
 
@@ -136,6 +135,14 @@ std::optional<std::string> canonical(std::string_view name) {
   return std::nullopt;
 }
 
+// "Unnamed: 0": the header pandas writes over a DataFrame's index.
+bool is_pandas_index(std::string_view text) {
+  if (!text.starts_with("Unnamed:")) return false;
+  const auto rest = trim(text.substr(8));
+  return !rest.empty() &&
+         std::all_of(rest.begin(), rest.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+}
+
 // One header cell: the column's name, its unit and the factor to SI.
 struct HeaderColumn {
   std::string text;  // as written, quotes removed, trimmed
@@ -151,7 +158,7 @@ HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::
   const auto fail = [&](std::string_view why) {
     return SeriesError(fmt::format("{}: column {} '{}': {}", at, k, c.text, why));
   };
-  if (c.text.empty() || std::regex_match(c.text, std::regex("Unnamed: *[0-9]+"))) {
+  if (c.text.empty() || is_pandas_index(c.text)) {
     return c;  // an index column (pandas) or a trailing separator: skipped
   }
   std::string_view name = c.text;
