@@ -1,3 +1,5 @@
+// The particle-grid transfers: B-spline weights, conservation, the textbook's transfers, affine
+// fields, angular momentum.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -7,43 +9,21 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <vector>
 
 #include "fem/body.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mesh/solid_mesher.hpp"
 #include "mpm/body_forces.hpp"
+#include "mpm/grid.hpp"
+#include "mpm/mpm_test_support.hpp"
 #include "mpm/stepper.hpp"
 
 namespace snapjump::mpm {
 namespace {
 
-class NoForces final : public ForceProvider {
- public:
-  void forces(const mesh::Points& x, double, mesh::Points& f) override {
-    f.x.assign(x.size(), 0.0);
-    f.y.assign(x.size(), 0.0);
-    f.z.assign(x.size(), 0.0);
-  }
-};
-
-Particles random_particles(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> pos(-0.01, 0.01), mass(0.5e-6, 2e-6), vel(-1.0, 1.0);
-  mesh::Points x;
-  std::vector<double> m;
-  for (int i = 0; i < n; ++i) {
-    x.push_back(pos(rng), pos(rng), pos(rng) + 0.02);
-    m.push_back(mass(rng));
-  }
-  auto p = Particles::at_rest(x, m);
-  for (int i = 0; i < n; ++i) {
-    p.v.x[i] = vel(rng);
-    p.v.y[i] = vel(rng);
-    p.v.z[i] = vel(rng);
-    for (int k = 0; k < 9; ++k) p.C[9 * i + k] = 50.0 * vel(rng);
-  }
-  return p;
-}
+using testing::NoForces;
+using testing::random_particles;
 
 TEST(Transfers, WeightsArePartitionOfUnityWithZeroFirstMoment) {
   for (double x : {0.0, 0.3, 0.5, 0.99, -1.7, 12.25}) {
@@ -249,139 +229,5 @@ TEST(Transfers, SpinningBodyKeepsItsAngularMomentum) {
 }
 
 // Free fall of the clamped shell with its container: z(t) = -g t^2 / 2 within 0.1 %.
-TEST(FreeFall, ClampedShellAndContainerFallAtG) {
-  const double g = 9.80665;
-  const fem::Body shell(mesh::make_cap_mesh({.R = 0.030,
-                                             .h = 0.002,
-                                             .phi = 80.0 * std::numbers::pi / 180,
-                                             .element_size = 0.006,
-                                             .layers = 1}),
-                        fem::Material::from_young(1.2e6, 0.45, 1160.0));
-  BodyForces forces(shell, g);
-  const double dt = shell.stable_time_step(0.3);
-  Stepper s(particles_of(shell), forces, {dt, 0.003, 0.5});
-  RigidBody container;
-  container.mass = 0.05;
-  container.applied_force = -container.mass * g;
-  s.add_rule(std::make_unique<ClampRule>(container));
-  s.add_rigid_body(container);
-  const int apex = shell.mesh().apex;
-  const double z0 = s.particles().x.z[apex];
-  while (s.time() < 0.02) s.step();
-  const double t = s.time();
-  const double exact = -0.5 * g * t * t;
-  EXPECT_NEAR(container.z / exact, 1.0, 1e-3) << "t = " << t;
-  EXPECT_NEAR((s.particles().x.z[apex] - z0) / exact, 1.0, 1e-3);
-  EXPECT_NEAR(container.vz / (-g * t), 1.0, 1e-3);
-}
-
-// A free body (no clamp, no plate) falls at g: z(t) = -g t^2 / 2 within 0.1 %.
-TEST(FreeFall, BallFallsAtG) {
-  const double g = 9.80665;
-  const fem::Body ball(mesh::make_ball_mesh(0.01, 0.05, 0.005),
-                       fem::Material::from_young(1.2e6, 0.3, 1160.0));
-  BodyForces forces(ball, g);
-  Stepper s(particles_of(ball), forces, {ball.stable_time_step(0.3), 0.002, 0.5});
-  const auto z0 = s.particles().x.z;
-  while (s.time() < 0.03) s.step();
-  double dz = 0.0, m = 0.0;
-  for (std::size_t i = 0; i < z0.size(); ++i) {
-    dz += s.particles().mass[i] * (s.particles().x.z[i] - z0[i]);
-    m += s.particles().mass[i];
-  }
-  const double t = s.time();
-  EXPECT_NEAR(dz / m / (-0.5 * g * t * t), 1.0, 1e-3) << "t = " << t;
-}
-
-TEST(Stepper, TimeStepIsTheSmallerBound) {
-  const auto a = choose_time_step(1e-6, 0.001, 10.0, 0.5);  // grid bound 5e-5 s
-  EXPECT_DOUBLE_EQ(a.dt, 1e-6);
-  EXPECT_STREQ(a.limiting, "elastic");
-  const auto b = choose_time_step(1e-4, 0.001, 10.0, 0.5);
-  EXPECT_DOUBLE_EQ(b.dt, 5e-5);
-  EXPECT_STREQ(b.limiting, "grid CFL");
-}
-
-TEST(Stepper, RunawayParticleStopsTheRunWithWhenAndWhere) {
-  NoForces none;
-  auto p = random_particles(10, 3);
-  p.v.x[4] = 1e4;  // far beyond the grid CFL
-  for (auto& c : p.C) c = 0.0;
-  Stepper s(std::move(p), none, {1e-5, 0.002, 0.5});
-  try {
-    s.step();
-    FAIL() << "expected a StepError";
-  } catch (const StepError& e) {
-    const std::string msg = e.what();
-    EXPECT_NE(msg.find("t = 1e-05 s"), std::string::npos) << msg;
-    EXPECT_NE(msg.find("grid cells per step"), std::string::npos) << msg;
-  }
-}
-
-}  // namespace
-}  // namespace snapjump::mpm
-
-namespace snapjump::mpm {
-namespace {
-
-// The nodes a particle's stencil touches, as integer coordinates, from the grid's grouping.
-std::vector<std::array<std::int64_t, 3>> stencil_nodes(const SparseGrid& g, std::size_t p) {
-  const auto& home =
-      g.block_coords(static_cast<std::size_t>(g.neighbours_of_home(g.home_of(p))[0]));
-  const auto& local = g.local_of(p);
-  std::vector<std::array<std::int64_t, 3>> out;
-  for (int a = 0; a < 3; ++a) {
-    for (int b = 0; b < 3; ++b) {
-      for (int c = 0; c < 3; ++c) {
-        out.push_back({kBlock * home[0] + local[0] + a, kBlock * home[1] + local[1] + b,
-                       kBlock * home[2] + local[2] + c});
-      }
-    }
-  }
-  return out;
-}
-
-// The grid's grouping: each particle's stencil starts where the B-spline says; no two tasks of
-// one colour touch a node (so they may run in parallel); a rebuild after a small move groups the
-// particles as a fresh grid does.
-TEST(Grid, ColoursNeverShareANodeAndARebuildEqualsAFreshBuild) {
-  const double dx = 0.002;
-  auto p = random_particles(3000, 11);
-  SparseGrid g(dx);
-  g.rebuild(p.x);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto first = stencil_nodes(g, i).front();
-    EXPECT_EQ(first[0], static_cast<std::int64_t>(std::floor(p.x.x[i] / dx - 0.5))) << i;
-    EXPECT_EQ(first[1], static_cast<std::int64_t>(std::floor(p.x.y[i] / dx - 0.5))) << i;
-    EXPECT_EQ(first[2], static_cast<std::int64_t>(std::floor(p.x.z[i] / dx - 0.5))) << i;
-  }
-  for (int colour = 0; colour < 8; ++colour) {
-    const auto& homes = g.homes_of_colour(colour);
-    const auto& tasks = g.tasks_of_colour(colour);
-    std::map<std::array<std::int64_t, 3>, std::size_t> owner;  // node -> task
-    for (std::size_t k = 0; k + 1 < tasks.size(); ++k) {
-      for (int h = tasks[k]; h < tasks[k + 1]; ++h) {
-        for (const int q : g.particles_of(homes[static_cast<std::size_t>(h)])) {
-          for (const auto& node : stencil_nodes(g, static_cast<std::size_t>(q))) {
-            const auto [it, fresh] = owner.emplace(node, k);
-            EXPECT_TRUE(fresh || it->second == k) << "colour " << colour << ": tasks " << it->second
-                                                  << " and " << k << " both write a node";
-          }
-        }
-      }
-    }
-  }
-  // Move every particle by a tenth of a cell and rebuild; a fresh grid on the same positions
-  // groups them alike.
-  for (std::size_t i = 0; i < p.size(); ++i)
-    p.x.x[i] += 0.1 * dx * std::sin(static_cast<double>(i));
-  g.rebuild(p.x);
-  SparseGrid fresh(dx);
-  fresh.rebuild(p.x);
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    EXPECT_EQ(stencil_nodes(g, i), stencil_nodes(fresh, i)) << "particle " << i;
-  }
-}
-
 }  // namespace
 }  // namespace snapjump::mpm

@@ -1,0 +1,87 @@
+// The sparse grid's grouping of particles into blocks and colours.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <numbers>
+#include <random>
+#include <vector>
+
+#include "fem/body.hpp"
+#include "mesh/cap_mesher.hpp"
+#include "mesh/solid_mesher.hpp"
+#include "mpm/body_forces.hpp"
+#include "mpm/grid.hpp"
+#include "mpm/mpm_test_support.hpp"
+#include "mpm/stepper.hpp"
+
+namespace snapjump::mpm {
+namespace {
+
+using testing::NoForces;
+using testing::random_particles;
+
+// The nodes a particle's stencil touches, as integer coordinates, from the grid's grouping.
+std::vector<std::array<std::int64_t, 3>> stencil_nodes(const SparseGrid& g, std::size_t p) {
+  const auto& home =
+      g.block_coords(static_cast<std::size_t>(g.neighbours_of_home(g.home_of(p))[0]));
+  const auto& local = g.local_of(p);
+  std::vector<std::array<std::int64_t, 3>> out;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      for (int c = 0; c < 3; ++c) {
+        out.push_back({kBlock * home[0] + local[0] + a, kBlock * home[1] + local[1] + b,
+                       kBlock * home[2] + local[2] + c});
+      }
+    }
+  }
+  return out;
+}
+
+// The grid's grouping: each particle's stencil starts where the B-spline says; no two tasks of
+// one colour touch a node (so they may run in parallel); a rebuild after a small move groups the
+// particles as a fresh grid does.
+TEST(Grid, ColoursNeverShareANodeAndARebuildEqualsAFreshBuild) {
+  const double dx = 0.002;
+  auto p = random_particles(3000, 11);
+  SparseGrid g(dx);
+  g.rebuild(p.x);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto first = stencil_nodes(g, i).front();
+    EXPECT_EQ(first[0], static_cast<std::int64_t>(std::floor(p.x.x[i] / dx - 0.5))) << i;
+    EXPECT_EQ(first[1], static_cast<std::int64_t>(std::floor(p.x.y[i] / dx - 0.5))) << i;
+    EXPECT_EQ(first[2], static_cast<std::int64_t>(std::floor(p.x.z[i] / dx - 0.5))) << i;
+  }
+  for (int colour = 0; colour < 8; ++colour) {
+    const auto& homes = g.homes_of_colour(colour);
+    const auto& tasks = g.tasks_of_colour(colour);
+    std::map<std::array<std::int64_t, 3>, std::size_t> owner;  // node -> task
+    for (std::size_t k = 0; k + 1 < tasks.size(); ++k) {
+      for (int h = tasks[k]; h < tasks[k + 1]; ++h) {
+        for (const int q : g.particles_of(homes[static_cast<std::size_t>(h)])) {
+          for (const auto& node : stencil_nodes(g, static_cast<std::size_t>(q))) {
+            const auto [it, fresh] = owner.emplace(node, k);
+            EXPECT_TRUE(fresh || it->second == k) << "colour " << colour << ": tasks " << it->second
+                                                  << " and " << k << " both write a node";
+          }
+        }
+      }
+    }
+  }
+  // Move every particle by a tenth of a cell and rebuild; a fresh grid on the same positions
+  // groups them alike.
+  for (std::size_t i = 0; i < p.size(); ++i)
+    p.x.x[i] += 0.1 * dx * std::sin(static_cast<double>(i));
+  g.rebuild(p.x);
+  SparseGrid fresh(dx);
+  fresh.rebuild(p.x);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    EXPECT_EQ(stencil_nodes(g, i), stencil_nodes(fresh, i)) << "particle " << i;
+  }
+}
+
+}  // namespace
+}  // namespace snapjump::mpm
