@@ -9,6 +9,8 @@
 #include <string>
 #include <system_error>
 
+#include "config/text.hpp"
+
 namespace snapjump::units {
 namespace {
 
@@ -61,12 +63,7 @@ std::string with_article(std::string_view noun) {
   return fmt::format("{} {}", vowel ? "an" : "a", noun);
 }
 
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t");
-  return s.substr(first, last - first + 1);
-}
+using text::trim;
 
 struct UnitDeleter {
   void operator()(ut_unit* u) const { ut_free(u); }

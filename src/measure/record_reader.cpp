@@ -15,17 +15,13 @@
 #include <system_error>
 #include <utility>
 
+#include "config/text.hpp"
 #include "measure/time_series.hpp"
 
 namespace snapjump::measure {
 namespace {
 
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
+using text::trim;
 
 std::string lower(std::string_view s) {
   std::string out(s);

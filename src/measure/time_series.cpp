@@ -13,6 +13,8 @@
 #include <system_error>
 #include <utility>
 
+#include "config/text.hpp"
+
 namespace snapjump::measure {
 namespace {
 
@@ -32,12 +34,7 @@ constexpr std::array kKnownColumns{
     KnownColumn{kPressure, units::Dimension::Pressure},
 };
 
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
+using text::trim;
 
 // Checks a column list; returns the index of "t". `where` prefixes messages.
 std::size_t check_columns(const std::vector<std::string>& names, std::string_view where) {

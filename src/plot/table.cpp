@@ -11,17 +11,13 @@
 #include <sstream>
 #include <system_error>
 
+#include "config/text.hpp"
 #include "plot/gnuplot.hpp"
 
 namespace snapjump::plot {
 namespace {
 
-std::string trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return std::string(s.substr(first, last - first + 1));
-}
+std::string trim(std::string_view s) { return std::string(text::trim(s)); }
 
 struct Record {
   std::vector<std::string> cells;

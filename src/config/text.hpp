@@ -1,0 +1,16 @@
+// Small text helpers shared by the readers (case values, units, CSV tables and records).
+#pragma once
+
+#include <string_view>
+
+namespace snapjump::text {
+
+// s without the blanks, tabs and carriage returns around it.
+inline std::string_view trim(std::string_view s) {
+  const auto first = s.find_first_not_of(" \t\r");
+  if (first == std::string_view::npos) return {};
+  const auto last = s.find_last_not_of(" \t\r");
+  return s.substr(first, last - first + 1);
+}
+
+}  // namespace snapjump::text
