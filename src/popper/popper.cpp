@@ -177,89 +177,101 @@ Preparation Popper::prepare(const Progress& progress) {
   Preparation prep;
   const double pc =
       theory::zoelly_pressure(case_.material.E, case_.shell.h, case_.shell.R, case_.material.nu);
-  auto& m = *model_;
-  const auto inverted = [&] { return m.apex_z() > m.outer_rim_z(); };
-  const double cavity0 = m.undeformed_cavity_volume();
+  if (!buckle(prep, progress, pc)) return prep;
+  if (!set_delta_p_j(prep, progress, pc)) return prep;
+  ground(prep, progress);
+  const double p_buckle = settings_.buckle_factor * pc;
+  prep.message = fmt::format(
+      "inverted under {:.0f} Pa ({:.2f} p_c), held at delta_p_j = {:.0f} Pa ({:.2f} p_c), "
+      "grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",
+      p_buckle, p_buckle / pc, delta_p_j_, delta_p_j_ / pc, 1e3 * model_->time(), prep.plate_force,
+      case_.popper.net_weight);
+  return prep;
+}
 
-  // Phases 1 and 2, container held in the air: raise the suction past the buckling pressure
-  // until the shell inverts, then bring it to delta_p_j and let it settle. The syringe holds the
-  // pressure difference: the gas is held at it before each step.
-  const double p_buckle = 1.4 * pc;
-  const double ramp = 0.02, max_wait = 0.1, down = 0.02, settle = 0.02;
+// Phase 1, container held in the air: raise the suction past the buckling pressure until the
+// shell inverts. The syringe holds the pressure difference: the gas is held at it before each
+// step.
+bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
+  const auto& st = settings_;
+  auto& m = *model_;
+  const double cavity0 = m.undeformed_cavity_volume();
+  const double p_buckle = st.buckle_factor * pc;
   m.start_held(numerics_.prep_damping);
-  double t_inverted = -1.0;
-  while (m.time() < ramp + max_wait) {
-    gas_.hold(p_buckle * std::min(1.0, m.time() / ramp));
+  while (m.time() < st.ramp + st.max_wait) {
+    gas_.hold(p_buckle * std::min(1.0, m.time() / st.ramp));
     m.step();
-    if (m.steps() % 200 == 0) {
+    if (m.steps() % st.progress_every == 0) {
       // At most ramp + max_wait: the fraction is of that bound.
-      if (progress) progress("buckle", m.time(), m.time() / (ramp + max_wait));
-      if (prep.buckling_pressure == 0.0 && m.cavity_volume() < 0.5 * cavity0) {
+      if (progress) progress("buckle", m.time(), m.time() / (st.ramp + st.max_wait));
+      if (prep.buckling_pressure == 0.0 && m.cavity_volume() < st.collapsed_cavity * cavity0) {
         prep.buckling_pressure = gas_.delta_p();
       }
-      if (inverted() && m.kinetic_energy() < 1e-3 * shell_mass_ * 1e-2) {
-        t_inverted = m.time();
-        break;
+      if (inverted() && m.kinetic_energy() < st.settled_energy * shell_mass_) {
+        prep.inverted = true;
+        return true;
       }
     }
   }
-  if (t_inverted < 0.0) {
-    prep.message = fmt::format("the shell did not invert under {:.0f} Pa (1.4 p_c)", p_buckle);
-    return prep;
-  }
-  prep.inverted = true;
+  prep.message = fmt::format("the shell did not invert under {:.0f} Pa ({:.1f} p_c)", p_buckle,
+                             st.buckle_factor);
+  return false;
+}
+
+// Phase 2, still in the air: bring the suction to delta_p_j and let the shell settle.
+bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double pc) {
+  const auto& st = settings_;
+  auto& m = *model_;
+  const double p_buckle = st.buckle_factor * pc;
   const double t0 = m.time();
-  while (m.time() < t0 + down + settle) {
-    const double f = std::min(1.0, (m.time() - t0) / down);
+  while (m.time() < t0 + st.down + st.settle) {
+    const double f = std::min(1.0, (m.time() - t0) / st.down);
     gas_.hold(p_buckle + f * (delta_p_j_ - p_buckle));
     m.step();
-    if (progress && m.steps() % 200 == 0)
-      progress("set delta_p_j", m.time() - t0, (m.time() - t0) / (down + settle));
+    if (progress && m.steps() % st.progress_every == 0)
+      progress("set delta_p_j", m.time() - t0, (m.time() - t0) / (st.down + st.settle));
   }
   if (!inverted()) {
     prep.message =
         fmt::format("the inverted shell snapped back at delta_p_j = {:.0f} Pa ({:.2f} p_c)",
                     delta_p_j_, delta_p_j_ / pc);
-    return prep;
+    return false;
   }
   prep.held = true;
+  return true;
+}
 
-  // Phase 3: ground. Lower the popper onto the plate and let the container go, damped, until
-  // the plate carries the net weight.
+// Phase 3, ground: lower the popper onto the plate and let the container go, damped, until the
+// plate carries the net weight.
+void Popper::ground(Preparation& prep, const Progress& progress) {
+  const auto& st = settings_;
+  auto& m = *model_;
   gas_.hold(delta_p_j_);
   container_.z = 0.0;
   container_.vz = 0.0;
   m.start_on_plate(container_, case_.friction.mu, numerics_.prep_damping);
   grounded_ = true;
-  // Settle with a lighter damping (the container on the shell is a slower oscillator than the
-  // shell alone) until the plate carries the net weight within 2 % over two 5 ms windows.
-  const double ground_damping = numerics_.prep_damping / 3.0, window_length = 5e-3,
-               max_ground_time = 0.2;
-  m.set_damping(ground_damping);
+  const double damping = numerics_.prep_damping / st.ground_damping_divisor;
+  m.set_damping(damping);
   double impulse = 0.0, window = 0.0;
   int good_windows = 0;
-  while (m.time() < max_ground_time) {
-    update_container_force(ground_damping);
+  while (m.time() < st.max_time) {
+    update_container_force(damping);
     m.step();
     impulse += m.plate_force() * m.dt();
     window += m.dt();
-    if (window >= window_length) {
+    if (window >= st.window) {
       prep.plate_force = impulse / window;
-      const bool good = std::abs(prep.plate_force / case_.popper.net_weight - 1.0) < 0.02;
+      const bool good =
+          std::abs(prep.plate_force / case_.popper.net_weight - 1.0) < st.weight_tolerance;
       good_windows = good ? good_windows + 1 : 0;
       impulse = window = 0.0;
-      if (good_windows >= 2) break;
+      if (good_windows >= st.good_windows) break;
     }
-    if (progress && m.steps() % 200 == 0) {
-      progress("ground", m.time(), m.time() / max_ground_time);
+    if (progress && m.steps() % st.progress_every == 0) {
+      progress("ground", m.time(), m.time() / st.max_time);
     }
   }
-  prep.message = fmt::format(
-      "inverted under {:.0f} Pa ({:.2f} p_c), held at delta_p_j = {:.0f} Pa ({:.2f} p_c), "
-      "grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",
-      p_buckle, p_buckle / pc, delta_p_j_, delta_p_j_ / pc, 1e3 * m.time(), prep.plate_force,
-      case_.popper.net_weight);
-  return prep;
 }
 
 namespace {

@@ -93,6 +93,35 @@ struct Preparation {
   std::string message;             // what happened, in words
 };
 
+// The quasi-static phases' settings (../shared/guide/simulation.md: only their end states
+// matter, so these choose how to get there, not what the popper does after the release).
+struct PreparationSettings {
+  // Phase 1, buckle: the suction ramps to buckle_factor p_c (Zoelly's p_c of the case's R, h;
+  // above 1 so that the perfect cap, which buckles near p_c, is sure to go) over ramp, then is
+  // held at most max_wait for the shell to invert. Inverted: the apex above the outer rim and the
+  // shell's kinetic energy below settled_energy per kg of shell.
+  double buckle_factor = 1.4;
+  double ramp = 0.02;             // [s]
+  double max_wait = 0.1;          // [s]
+  double settled_energy = 1e-5;   // [J/kg]
+  double collapsed_cavity = 0.5;  // the buckling pressure is read when the cavity is this
+                                  // fraction of the undeformed one
+  // Phase 2, set: down to delta_p_j over down, then held for settle.
+  double down = 0.02;    // [s]
+  double settle = 0.02;  // [s]
+  // Phase 3, ground: on the plate with the preparation damping divided by ground_damping_divisor
+  // (the container on the shell is a slower oscillator than the shell alone), until the plate's
+  // mean force over windows of window carries the net weight within weight_tolerance in
+  // good_windows windows running, at most max_time.
+  double ground_damping_divisor = 3.0;
+  double window = 5e-3;  // [s]
+  double weight_tolerance = 0.02;
+  int good_windows = 2;
+  double max_time = 0.2;  // [s]
+  // Progress is reported (and stop requests seen) every this many steps.
+  int progress_every = 200;
+};
+
 // Progress callback: phase name, simulated time in the phase, fraction done (0..1, or < 0 when
 // unknown; for a phase that may end early, the fraction of its longest duration).
 using Progress = std::function<void(const std::string& phase, double t, double fraction)>;
@@ -110,6 +139,7 @@ class Popper {
   // Phases 1-3 (quasi-static, damped): buckle, set delta_p_j, ground. Returns what happened; the
   // popper is then ready for release() if prep.held.
   Preparation prepare(const Progress& progress = {});
+  [[nodiscard]] const PreparationSettings& preparation_settings() const { return settings_; }
   // t = 0: opens the valve; from here on the run is physical (no damping).
   void release();
   // One physical step.
@@ -144,6 +174,12 @@ class Popper {
   // Tension of an elastic wire beyond the counterweight's weight, on the container [N].
   [[nodiscard]] double wire_tension() const;
   void advance_gas();
+  // The phases of prepare(): each returns false, with prep.message saying why, when the popper
+  // cannot go on to the next.
+  bool buckle(Preparation& prep, const Progress& progress, double pc);
+  bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc);
+  void ground(Preparation& prep, const Progress& progress);
+  [[nodiscard]] bool inverted() const { return model_->apex_z() > model_->outer_rim_z(); }
 
   config::Case case_;
   Numerics numerics_;
@@ -155,6 +191,7 @@ class Popper {
   // with a rigid wire (its own fall); unused with a rigid wire.
   fem::RigidBody counterweight_;
   double delta_p_j_ = 0.0;
+  PreparationSettings settings_;
   bool grounded_ = false;  // on the plate, ready for release()
   double shell_mass_ = 0.0;
   double z_release_ = 0.0;  // container z at t = 0
