@@ -76,9 +76,13 @@ std::tuple<int, std::string, std::string> cli(const std::vector<std::string>& ar
   snapjump::app::CliHooks hooks;
   hooks.stop_requested = [&] {
     py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      PyErr_Clear();
-      interrupted = true;
+    if (!callback_error && PyErr_CheckSignals() != 0) {
+      if (PyErr_ExceptionMatches(PyExc_KeyboardInterrupt)) {
+        PyErr_Clear();
+        interrupted = true;  // raised again, with what the run wrote, once it has stopped
+      } else {
+        callback_error = py::error_already_set();  // what a signal handler raised, as it is
+      }
     }
     return interrupted || callback_error.has_value();
   };

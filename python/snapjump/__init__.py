@@ -65,7 +65,10 @@ def _toml_text(case):
     for table, keys in case.items():
         if isinstance(keys, dict):
             lines.append(f"[{table}]")
-            lines += [f"{k} = {value(v)}" for k, v in keys.items()]
+            for k, v in keys.items():
+                if table == "shell" and k == "mesh":  # relative to here, not to the temporary file
+                    v = os.path.abspath(os.fspath(v))
+                lines.append(f"{k} = {value(v)}")
     return "\n".join(lines) + "\n"
 
 
@@ -143,9 +146,10 @@ def analyze(data, case=None, R=None, complete=False, force_offset=None, columns=
             data = {str(c): data[c].tolist() for c in data.columns}
         fd, tmp = tempfile.mkstemp(suffix=".csv", prefix="snapjump-")
         os.close(fd)
-        _write_columns(dict(data), tmp)
         args.append(tmp)
     try:
+        if tmp:
+            _write_columns(dict(data), tmp)
         if case is not None:
             args += ["--case", os.fspath(case)]
         if R is not None:

@@ -498,7 +498,8 @@ std::optional<std::string> unknown_word(CLI::App& app, int argc, const char* con
   }
   for (int i = 1; i < argc; ++i) {
     const std::string_view word = argv[i];
-    if (!word.starts_with("--") || word.size() == 2) continue;
+    if (word == "--") break;  // what follows is positional, whatever it looks like
+    if (!word.starts_with("--")) continue;
     const auto name = word.substr(
         2, word.find('=') == std::string_view::npos ? std::string_view::npos : word.find('=') - 2);
     if (std::find(known.begin(), known.end(), name) != known.end()) continue;

@@ -316,7 +316,7 @@ std::optional<std::size_t> find_launch(const TimeSeries& s, const AnalysisOption
             "(z from {:.4g} to {:.4g} mm in the next {:.3g} ms): not a launch",
             t_cross, 1e3 * z_at, 1e3 * z_after, 1e3 * (t_after - t_cross)));
         while (j < n && F[j] < ceiling) ++j;
-        k = j;
+        k = j - 1;  // the loop's ++k looks at sample j next: it may be a new peak
         continue;
       }
     }
@@ -331,7 +331,8 @@ std::optional<std::size_t> find_launch(const TimeSeries& s, const AnalysisOption
       }
       return peak;
     }
-    k = j;  // F[j] >= level; resume after it
+    // Not a launch from this crossing: the scan goes on with the next sample, so that a later
+    // crossing inside the same stretch (a plate ringing down) and a new peak are both seen.
   }
   return std::nullopt;
 }
@@ -380,8 +381,11 @@ void no_snap_settled(const TimeSeries& s, const AnalysisOptions& o, Analysis& a)
         t.back());
     return;
   }
+  // The suction gone: delta_p down to zero after its largest value (a record that starts
+  // before the suction is applied reads zero at first).
   const auto dp = s.column(kPressure);
-  const auto it = std::find_if(dp.begin(), dp.end(), [](double v) { return v <= 0.0; });
+  const auto top = std::max_element(dp.begin(), dp.end());
+  const auto it = std::find_if(top, dp.end(), [](double v) { return v <= 0.0; });
   if (it == dp.end()) {
     a.undetermined = fmt::format(
         "no onset within the record, which ends at t = {:.6g} s with delta_p = {:.4g} Pa of "
@@ -535,13 +539,15 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     // record): the popper is off the plate, whatever F reads (a plate ringing, an offset); the
     // snap's window ends there.
     std::optional<std::size_t> contact_lost;
+    bool launch_from_contact = false;
     if (series.has_contact()) {
       const auto cs = series.contact();
       for (std::size_t i = *onset + 1; i <= last; ++i) {
         if (cs[i] != ContactState::None) continue;
         std::size_t j = i;
         while (j + 1 < n && cs[j + 1] == ContactState::None) ++j;
-        if (j + 1 == n || t[j + 1] - t[i] >= options.min_flight_time) {
+        const double until = j + 1 == n ? t[j] : t[j + 1];
+        if (until - t[i] >= options.min_flight_time) {
           contact_lost = i;
           last = i;
           break;
@@ -576,6 +582,7 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
         while (k < n && t[k] < *a.t_launch) ++k;
         last = std::min(last, k);
       } else if (contact_lost) {
+        launch_from_contact = true;
         a.t_launch = t[*contact_lost];
         a.warnings.push_back(fmt::format(
             "F does not stay below the launch threshold, but the contact column says the shell is "
@@ -599,7 +606,16 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
       // ringing plate) after the flight.
       const double ceiling = std::max(*a.force_threshold, kQuiet * *a.F_star);
       std::size_t k = last;
-      while (k < n && (t[k] <= *a.t_launch + options.min_flight_time || F[k] < ceiling)) ++k;
+      if (launch_from_contact) {
+        // F could not tell the flight (it never stayed low): the contact column tells the end.
+        const auto cs = series.contact();
+        while (k < n &&
+               (t[k] <= *a.t_launch + options.min_flight_time || cs[k] == ContactState::None)) {
+          ++k;
+        }
+      } else {
+        while (k < n && (t[k] <= *a.t_launch + options.min_flight_time || F[k] < ceiling)) ++k;
+      }
       if (k < n) {
         a.t_landing = t[k];
         landing = k;

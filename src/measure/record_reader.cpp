@@ -168,6 +168,13 @@ HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::
     const auto open = c.text.find(open_ch);
     const auto close = c.text.rfind(close_ch);
     if (open == std::string::npos && close == std::string::npos) continue;
+    const bool malformed = open == std::string::npos || close == std::string::npos ||
+                           close < open ||
+                           !trim(std::string_view(c.text).substr(close + 1)).empty();
+    if (malformed && !mapped &&
+        !canonical(trim(std::string_view(c.text).substr(0, std::min(open, close))))) {
+      break;  // not a column the analysis reads: kept as written
+    }
     if (open == std::string::npos || close == std::string::npos || close < open) {
       throw fail(
           fmt::format("unbalanced brackets; write the unit as \"name {}unit{}\", e.g. \"t {}ms{}\"",
@@ -182,6 +189,16 @@ HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::
     break;
   }
   if (name.empty()) throw fail("the column has no name");
+  if (mapped) {
+    const auto standard = canonical(*mapped);
+    if (!standard) {
+      throw fail(fmt::format(
+          "the column mapping names '{}', which is not a column the analysis knows (t, F, z, r, "
+          "w, e, e_apex, delta_p, contact)",
+          *mapped));
+    }
+    mapped = standard;
+  }
   std::optional<std::string> known = mapped ? mapped : canonical(name);
   // "t_ms", "F_N", "z_mm": a known name, an underscore and a unit of the right dimension.
   if (!known && !unit) {
@@ -347,6 +364,7 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
 
   // The rows as written.
   std::vector<RawRow> rows;
+  std::vector<char> textual(names.size(), 0);
   bool gaps_anywhere = false;
   while (std::getline(in, line)) {
     ++line_no;
@@ -375,6 +393,10 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
         continue;
       }
       const auto v = parse_number(cells[k], decimal_comma);
+      if (!v && !column_dimension(names[i])) {
+        textual[i] = true;  // a column the analysis does not read, holding text: left out
+        continue;
+      }
       if (!v) {
         throw SeriesError(fmt::format("{}: column {} '{}': '{}' is not a finite number", at(),
                                       k + 1, header[k].text, trim(cells[k])));
@@ -465,6 +487,12 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
     throw SeriesError(fmt::format("{}: no row has a value of F", source));
   }
   std::vector<bool> keep(names.size(), true);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (textual[i]) {
+      keep[i] = false;
+      notes.push_back(fmt::format("column '{}' holds text: left out", names[i]));
+    }
+  }
   bool keep_contact = contact_col.has_value();
   std::vector<Gap> gaps;
   double lo = clock.empty() ? 0.0 : clock.front();
@@ -475,7 +503,7 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
       return ts.size() >= 2 && ts.back() - ts.front() >= kMinCoverage * span;
     };
     for (std::size_t i = 0; i < names.size(); ++i) {
-      if (i == time_pos || i == force_pos) continue;
+      if (i == time_pos || i == force_pos || !keep[i]) continue;
       if (!covered(own_t[i])) {
         keep[i] = false;
         notes.push_back(
@@ -485,8 +513,12 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
                         own_t[i].empty() ? 0.0 : own_t[i].back() - own_t[i].front(), span));
         continue;
       }
-      lo = std::max(lo, own_t[i].front());
-      hi = std::min(hi, own_t[i].back());
+      // Only the columns the analysis reads cut the record to their time span; another column
+      // is held at its end values beyond it.
+      if (column_dimension(names[i])) {
+        lo = std::max(lo, own_t[i].front());
+        hi = std::min(hi, own_t[i].back());
+      }
     }
     if (keep_contact && !covered(contact_t)) {
       keep_contact = false;

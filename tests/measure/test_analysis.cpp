@@ -768,6 +768,52 @@ TEST(Analysis, AFlightBeforeTheOnsetIsNoSnapFromThePlate) {
   EXPECT_FALSE(a.t_star);
 }
 
+TEST(Analysis, APeakRightAfterAFailedCrossingIsStillThePeak) {
+  // 1 N, a dip to 0.01 N for 0.3 ms (not a flight), a single 5 N sample, then 3 N until 30 ms,
+  // a fall to 0 at 34 ms and a flight: F* is the 5 N sample.
+  Spec spec;
+  spec.F = [](double t) {
+    if (t < 21e-3) return 0.5;
+    if (t < 22e-3) return 0.5 + 0.5 * (t - 21e-3) / 1e-3;
+    if (t < 22.35e-3) return 0.01;
+    if (t < 22.45e-3) return 5.0;
+    if (t < 30e-3) return 3.0;
+    if (t < 34e-3) return 3.0 * (1.0 - (t - 30e-3) / 4e-3);
+    return 0.0;
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump);
+  ASSERT_TRUE(a.F_star);
+  EXPECT_NEAR(*a.F_star, 5.0, 1e-12);
+}
+
+TEST(Analysis, ARecordThatStartsBeforeTheSuctionIsNotNoSnapWhileItHolds) {
+  // delta_p 0 at the start, up to 5 kPa by 50 ms and held; the apex stays away.
+  Spec spec;
+  spec.w = [](double) { return 1.0e-3; };
+  spec.F = [](double) { return 0.5; };
+  spec.with_dp = true;
+  spec.dp = [](double t) { return 5000.0 * std::min(1.0, t / 50e-3); };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome) << outcome_text(a.outcome);
+  EXPECT_NE(a.undetermined.find("suction still holding"), std::string::npos) << a.undetermined;
+}
+
+TEST(Analysis, OneSampleWithoutContactAtTheEndIsNoFlight) {
+  // The contact column loses the shell on the last row only (a camera losing track).
+  Spec spec;
+  spec.with_w = false;
+  spec.with_contact = true;
+  spec.F = [](double t) { return t < 28e-3 ? F_jump(t) : 0.5; };  // settles on the weight
+  spec.contact = [](double t) {
+    if (t < 21e-3) return ContactState::Ring;
+    return t > 149.95e-3 ? ContactState::None : ContactState::Disk;
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Snap);
+  EXPECT_FALSE(a.t_launch);
+}
+
 TEST(Analysis, ABareNumberForRIsNamed) {
   AnalysisOptions o;
   o.R = 30.0;  // "--R 30": 30 m

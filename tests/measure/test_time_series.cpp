@@ -333,6 +333,28 @@ TEST(LabRecords, ColumnMappingAndUnitsByOption) {
   EXPECT_THROW((void)read_with("t,F\n0,1\n", absent), SeriesError);
 }
 
+TEST(LabRecords, ColumnsTheAnalysisDoesNotReadNeverStopTheRecord) {
+  // A trial label (text), a sparse marker (half the time) and a header with text after its unit.
+  const auto s = read_with(
+      "t,F,trial,marker,Temp (C) sensor 2\n0,1,A,,20\n1,1,A,5,20\n2,1,B,,21\n3,1,B,,21\n"
+      "4,1,B,,22\n",
+      {});
+  EXPECT_EQ(s.size(), 5U);  // the marker does not cut the record to its span
+  EXPECT_FALSE(s.has("trial"));
+  EXPECT_TRUE(has_note(s, "column 'trial' holds text: left out"));
+  EXPECT_TRUE(s.has("Temp (C) sensor 2"));
+  // A mapping onto a name the analysis does not know is an error naming it.
+  ReadOptions o;
+  o.columns = {{"tempo", "Kraft"}};
+  try {
+    (void)read_with("t,Kraft\n0,1\n", o);
+    ADD_FAILURE() << "no error";
+  } catch (const SeriesError& e) {
+    EXPECT_NE(std::string(e.what()).find("names 'tempo', which is not a column"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(LabRecords, UnsortedRowsAreSortedWithANote) {
   const auto s = read_with("t,F\n0.002,3\n0,1\n0.001,2\n", {});
   EXPECT_EQ(std::vector<double>(s.column("F").begin(), s.column("F").end()),
