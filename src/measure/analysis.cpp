@@ -535,9 +535,9 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
         }
       }
     }
-    // A contact column that says "none" for min_flight_time after the onset (or to the end of the
-    // record): the popper is off the plate, whatever F reads (a plate ringing, an offset); the
-    // snap's window ends there.
+    // A contact column that says "none" for min_flight_time after the onset (a record that ends
+    // sooner does not count): the popper is off the plate, whatever F reads (a plate ringing, an
+    // offset); the snap's window ends there.
     std::optional<std::size_t> contact_lost;
     bool launch_from_contact = false;
     if (series.has_contact()) {
