@@ -23,6 +23,7 @@
 #include "io/atomic_file.hpp"
 #include "io/folder_lock.hpp"
 #include "io/prediction_report.hpp"
+#include "io/run_status.hpp"
 #include "io/vtu.hpp"
 #include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
@@ -223,7 +224,7 @@ void record_failure(const fs::path& dir, const std::string& what) {
       auto before = nlohmann::json::parse(f, nullptr, false);
       if (before.is_object()) summary = std::move(before);
     }
-    summary["status"] = fmt::format("failed: {}", what);
+    summary["status"] = io::run_status::failure(what);
     write_json_file(dir / "summary.json", summary);
   } catch (const std::exception&) {
     // The error that stopped the run is reported by the caller.
@@ -269,7 +270,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   }
   fmt::print(out, "snapjump run: {}\n  output      {}{}\n", c.title.empty() ? c.source : c.title,
              where, resuming ? " (resumed)" : "");
-  nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", "running"}};
+  nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", io::run_status::kRunning}};
   if (!resuming) {
     // A designer's mesh goes into the folder with the case, so that a resume or a rerun does not
     // depend on a file that may change or move; case.toml names the copy (relative to itself).
@@ -391,7 +392,8 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
                                 {"plate_force", prep.plate_force},
                                 {"message", prep.message}};
       if (!prep.held) {
-        summary["status"] = prep.inverted ? "snapped back before release" : "did not invert";
+        summary["status"] =
+            prep.inverted ? io::run_status::kSnappedBack : io::run_status::kDidNotInvert;
         write_json_file(dir / "summary.json", summary);
         fmt::print(out, "  result      {}\n", summary["status"].get<std::string>());
         return kExitOk;
@@ -407,7 +409,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       loop.next_checkpoint = numerics.checkpoint_interval;
     }
 
-    std::string status = "completed";
+    std::string status(io::run_status::kCompleted);
     double last_stop_check = 0.0;
     const double run_start = wall();
     const long start_steps = pop.steps();
@@ -422,7 +424,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
           loop.next_sample += numerics.probe_interval;
           // Stop at the apex of the flight after the snap (popper::FlightWatch).
           if (loop.flight.apex_reached(record())) {
-            status = "completed (apex of the flight)";
+            status = io::run_status::kCompletedAtApex;
             break;
           }
         }
@@ -454,7 +456,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
         }
       }
     } catch (const std::exception& e) {
-      status = fmt::format("failed: {}", e.what());
+      status = io::run_status::failure(e.what());
       fmt::print(err, "error: {}\n  what was written so far stays in {}\n", e.what(), dir.string());
     }
     if (paused) {
@@ -495,7 +497,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     } catch (const std::exception& e) {
       fmt::print(out, "  note        no figures: {}\n", e.what());
     }
-    return status.rfind("failed", 0) == 0 ? kExitFailure : kExitOk;
+    return io::run_status::failed(status) ? kExitFailure : kExitOk;
   } catch (const ResumeRefused&) {
     throw;  // nothing was changed: the summary keeps its status
   } catch (const std::exception& e) {

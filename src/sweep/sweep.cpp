@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/run_status.hpp"
 #include "theory/prefactors.hpp"
 #include "theory/scaling.hpp"
 
@@ -370,11 +371,8 @@ std::string_view to_string(RunState s) {
 RunState state_of(const RunPaths& p) {
   if (const auto summary = read_json(p.dir / "summary.json")) {
     const std::string status = summary->value("status", std::string());
-    if (status.rfind("completed", 0) == 0 || status == "snapped back before release" ||
-        status == "did not invert") {
-      return RunState::Done;
-    }
-    if (status.rfind("failed", 0) == 0) return RunState::Failed;
+    if (io::run_status::finished(status)) return RunState::Done;
+    if (io::run_status::failed(status)) return RunState::Failed;
   }
   if (fs::exists(p.failed)) return RunState::Failed;
   if (!fs::exists(p.dir)) return RunState::New;
@@ -394,7 +392,7 @@ bool resumes_after_kill(const RunPaths& p) {
   if (!fs::exists(p.dir / "checkpoint.bin")) return false;
   const auto summary = read_json(p.dir / "summary.json");
   if (!summary) return false;
-  return summary->value("status", std::string()).rfind("failed", 0) != 0;
+  return !io::run_status::failed(summary->value("status", std::string()));
 }
 
 void prepare_folder(const Spec& spec) {
@@ -502,9 +500,9 @@ int write_table(const Spec& spec, const fs::path& csv) {
     std::string status = summary ? summary->value("status", std::string()) : std::string();
     std::string error;
     if (state == RunState::Failed && fs::exists(p.failed)) error = read_text(p.failed);
-    if (status.rfind("failed", 0) == 0) error = status;
+    if (io::run_status::failed(status)) error = status;
     if (status.empty()) status = std::string(to_string(state));
-    if (status.rfind("failed", 0) == 0) status = "failed";
+    if (io::run_status::failed(status)) status = io::run_status::kFailed;
     const nlohmann::json* m = nullptr;
     if (summary && summary->contains("measured")) m = &(*summary)["measured"];
     std::string outcome;
