@@ -79,6 +79,13 @@ double robust_sigma(std::vector<double> v) {
   return 1.4826 * median(v);
 }
 
+// The upper of the two middle values (the middle one for an odd count); v not empty.
+double upper_median(std::vector<double> v) {
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
 // The start of the rise of F that ends at sample `k`. The base F_b is the lowest F met walking
 // back from k until F climbs again by more than a tenth of the rise F[k] - F_b (noise smaller than
 // that does not stop the walk); the rise starts where F, walking back from k, first falls below
@@ -209,9 +216,7 @@ void estimate_noise(std::span<const double> t, std::span<const double> F, const 
   }
   std::optional<double> median;
   if (tail.size() >= kMinNoiseSamples) {
-    std::vector<double> sorted = tail;
-    std::sort(sorted.begin(), sorted.end());
-    median = sorted[sorted.size() / 2];
+    median = upper_median(tail);
     if (std::abs(*median) <= kQuiet * F_star) {
       a.force_noise = robust_sigma(std::move(tail));
       return;
@@ -237,10 +242,7 @@ void estimate_noise(std::span<const double> t, std::span<const double> F, const 
     // the plate, pulled by the suction) says nothing about the noise.
     std::vector<double> stretch(F.begin() + static_cast<std::ptrdiff_t>(best_from),
                                 F.begin() + static_cast<std::ptrdiff_t>(best_from + best_len));
-    std::vector<double> sorted = stretch;
-    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(best_len / 2),
-                     sorted.end());
-    if (std::abs(sorted[best_len / 2]) <= o.relative_threshold * F_star) {
+    if (std::abs(upper_median(stretch)) <= o.relative_threshold * F_star) {
       a.force_noise = robust_sigma(std::move(stretch));
       return;
     }
@@ -322,7 +324,6 @@ std::optional<std::size_t> find_launch(const TimeSeries& s, const AnalysisOption
     }
     if (stays) {
       a.t_launch = t_cross;
-      a.force_threshold = level;
       if (j == n && t.back() - t_cross < o.min_flight_time) {
         a.warnings.push_back(fmt::format(
             "the record ends {} ms after the launch, before F has stayed below the threshold "
@@ -640,23 +641,18 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
           "without having left the plate: F* is the largest force before that",
           t[last], options.onset_ratio));
     }
-    // A launch before the onset: the popper left the plate before the apex came down (thrown
-    // up by the inflow), and the onset is the apex coming down with the falling popper.
-    std::optional<double> early_flight;
-    if (a.t_launch && *a.t_launch < t_on) early_flight = a.t_launch;
-    if (early_flight) {
+    if (a.t_launch && *a.t_launch < t_on) {
       // The popper left the plate before the apex came down (thrown up by the inflow without a
-      // snap on the plate): the onset found later is its landing on the everted shell.
+      // snap on the plate): the onset found later is the apex coming down with the falling
+      // popper.
       a.undetermined = fmt::format(
           "the popper left the plate at t = {:.6g} s, before the onset (w / R < {} only at t = "
           "{:.6g} s, after it came down again): no snap from the plate to measure",
-          *early_flight, options.onset_ratio, t_on);
+          *a.t_launch, options.onset_ratio, t_on);
     } else if (a.t_launch) {
       a.t_star = *a.t_launch - t_on;
       a.t_star_rise = *a.t_launch - *a.t_force_rise;
-    } else if (ring_again) {
-      snap_settled = true;
-    } else if (options.complete || t.back() - *a.t_F_star >= options.settle_time) {
+    } else if (ring_again || options.complete || t.back() - *a.t_F_star >= options.settle_time) {
       snap_settled = true;
     } else {
       a.undetermined = fmt::format(
@@ -709,19 +705,17 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     const double level =
         std::max(kTareFraction * range, options.noise_multiple * a.force_noise.value_or(0.0));
     if (const auto neg = negative_stretch(t, F, level, options.min_flight_time)) {
-      std::vector<double> part(F.begin() + static_cast<std::ptrdiff_t>(neg->first),
-                               F.begin() + static_cast<std::ptrdiff_t>(neg->second) + 1);
-      std::nth_element(part.begin(), part.begin() + static_cast<std::ptrdiff_t>(part.size() / 2),
-                       part.end());
-      const double median = part[part.size() / 2];
+      const double median = upper_median(
+          std::vector<double>(F.begin() + static_cast<std::ptrdiff_t>(neg->first),
+                              F.begin() + static_cast<std::ptrdiff_t>(neg->second) + 1));
       std::string hint;
       if (c != nullptr && c->popper.net_weight > 0.0) {
         hint = fmt::format(" (the case's net weight is {:.4g} N)", c->popper.net_weight);
       }
       a.warnings.push_back(fmt::format(
           "F stays below zero (median {:.4g} N) for {:.3g} ms from t = {:.6g} s: a plate pushes "
-          "and "
-          "cannot pull, so the record looks tared or offset (the popper's weight subtracted?). F*, "
+          "and cannot pull, so the record looks tared or offset (the popper's weight subtracted?). "
+          "F*, "
           "the launch and the outcome need F about 0 in flight: add the offset back (force_offset, "
           "--force-offset){}",
           median, 1e3 * (t[neg->second] - t[neg->first]), t[neg->first], hint));
@@ -729,14 +723,14 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
     }
   }
 
-  if (!a.undetermined.empty()) {
-    // an outcome the record cannot settle
-  } else if (a.t_launch) {
-    a.outcome = theory::Outcome::Jump;
-  } else if (a.t_onset && snap_settled) {
-    a.outcome = theory::Outcome::Snap;
-  } else if (!a.t_onset && can_tell) {
-    a.outcome = theory::Outcome::NoSnap;
+  if (a.undetermined.empty()) {  // otherwise the record cannot settle the outcome
+    if (a.t_launch) {
+      a.outcome = theory::Outcome::Jump;
+    } else if (a.t_onset && snap_settled) {
+      a.outcome = theory::Outcome::Snap;
+    } else if (!a.t_onset && can_tell) {
+      a.outcome = theory::Outcome::NoSnap;
+    }
   }
 
   if (c != nullptr) {
