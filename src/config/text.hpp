@@ -1,6 +1,9 @@
 // Small text helpers shared by the readers (case values, units, CSV tables and records).
 #pragma once
 
+#include <algorithm>
+#include <cctype>
+#include <string>
 #include <string_view>
 
 namespace snapjump::text {
@@ -11,6 +14,14 @@ inline std::string_view trim(std::string_view s) {
   if (first == std::string_view::npos) return {};
   const auto last = s.find_last_not_of(" \t\r");
   return s.substr(first, last - first + 1);
+}
+
+// s in lower case (ASCII letters).
+inline std::string lower(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  return out;
 }
 
 }  // namespace snapjump::text

@@ -21,14 +21,8 @@
 namespace snapjump::measure {
 namespace {
 
+using text::lower;
 using text::trim;
-
-std::string lower(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-  return out;
-}
 
 bool is_comment_or_blank(std::string_view line) {
   const auto s = trim(line);

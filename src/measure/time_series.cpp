@@ -143,10 +143,7 @@ std::string_view to_string(ContactState s) {
 }
 
 std::optional<ContactState> parse_contact_state(std::string_view text) {
-  const auto s = trim(text);
-  std::string lower(s);
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+  const auto lower = text::lower(trim(text));
   for (const auto state : {ContactState::None, ContactState::Ring, ContactState::Disk}) {
     if (lower == to_string(state)) return state;
   }

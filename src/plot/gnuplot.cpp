@@ -12,6 +12,8 @@
 #include <iterator>
 #include <system_error>
 
+#include "config/text.hpp"
+
 namespace snapjump::plot {
 namespace {
 
@@ -50,9 +52,7 @@ std::string tail(const std::string& text, std::size_t limit = 2000) {
 std::string_view extension(Format f) { return f == Format::Svg ? "svg" : "png"; }
 
 std::optional<Format> parse_format(std::string_view text) {
-  std::string lower(text);
-  std::transform(lower.begin(), lower.end(), lower.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const auto lower = text::lower(text);
   if (lower == "png") return Format::Png;
   if (lower == "svg") return Format::Svg;
   return std::nullopt;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "config/case.hpp"
+#include "config/text.hpp"
 #include "plot/figures.hpp"
 #include "plot/style.hpp"
 #include "plot/table.hpp"
@@ -33,12 +34,7 @@ Table read_table(const fs::path& path) {
   return t;
 }
 
-std::string lower(std::string_view s) {
-  std::string l(s);
-  std::transform(l.begin(), l.end(), l.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return l;
-}
+using text::lower;
 
 // (x, y) of the rows where both are present, each times its scale.
 // With `outcome`, only the rows whose outcome column reads so (any case).

@@ -197,11 +197,7 @@ std::optional<double> Table::number(std::size_t row, std::string_view name) cons
   if (cell.empty()) return std::nullopt;
   std::string_view s = cell;
   if (s.front() == '+') s.remove_prefix(1);
-  const std::string lower = [&] {
-    std::string l(s);
-    for (auto& c : l) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return l;
-  }();
+  const auto lower = text::lower(s);
   if (lower == "nan" || lower == "-nan" || lower == "inf" || lower == "-inf") return std::nullopt;
   double v = 0.0;
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
