@@ -21,6 +21,7 @@
 #include "app/sweep_command.hpp"
 #include "config/case.hpp"
 #include "contact/contact.hpp"
+#include "io/csv.hpp"
 #include "io/prediction_report.hpp"
 #include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
@@ -282,17 +283,6 @@ constexpr std::array kRecordColumns{
     TableColumn{"alpha_t", &measure::Analysis::alpha_t},
 };
 
-// A CSV cell: quoted when it holds a comma, a quote or a line break.
-std::string csv_cell(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string q = "\"";
-  for (const char ch : text) {
-    if (ch == '"') q += '"';
-    q += ch;
-  }
-  return q + '"';
-}
-
 int analyze_cmd(const AnalyzeOptions& o, std::ostream& out, std::ostream& err) {
   const units::UnitParser parser;
   std::optional<config::Case> c;
@@ -389,7 +379,7 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out, std::ostream& err) {
     if (csv) {
       const auto line = [&](const std::vector<std::string>& cells) {
         for (std::size_t k = 0; k < cells.size(); ++k) {
-          fmt::print(out, "{}{}", k > 0 ? "," : "", csv_cell(cells[k]));
+          fmt::print(out, "{}{}", k > 0 ? "," : "", io::csv_field(cells[k]));
         }
         fmt::print(out, "\n");
       };
@@ -475,21 +465,20 @@ std::optional<std::string> unknown_word(CLI::App& app, int argc, const char* con
       if (sub->get_name() == word) next = sub;
     }
     if (next == nullptr) {
-      if (names.empty() || chain.size() > 1) break;  // a positional argument of the subcommand
-      return fmt::format("unknown subcommand '{}' (the subcommands: {}){}", word,
-                         fmt::join(names, ", "), suggestion(word, names, ""));
+      if (names.empty()) break;  // a positional argument of the subcommand
+      if (chain.size() == 1) {
+        return fmt::format("unknown subcommand '{}' (the subcommands: {}){}", word,
+                           fmt::join(names, ", "), suggestion(word, names, ""));
+      }
+      return fmt::format("unknown subcommand '{}' of '{}' (its subcommands: {}){}", word,
+                         chain.back()->get_name(), fmt::join(names, ", "),
+                         suggestion(word, names, ""));
     }
     chain.push_back(next);
     ++k;
   }
-  if (chain.size() > 1 && !chain.back()->get_subcommands({}).empty() && k < argc &&
-      !std::string_view(argv[k]).starts_with("-")) {
-    std::vector<std::string> names;
-    for (auto* sub : chain.back()->get_subcommands({})) names.push_back(sub->get_name());
-    return fmt::format("unknown subcommand '{}' of '{}' (its subcommands: {}){}", argv[k],
-                       chain.back()->get_name(), fmt::join(names, ", "),
-                       suggestion(argv[k], names, ""));
-  }
+  std::string path;  // "snapjump plot series" less "snapjump"
+  for (std::size_t j = 1; j < chain.size(); ++j) path += " " + chain[j]->get_name();
   std::vector<std::string> known;
   for (auto* level : chain) {
     for (const auto* opt : level->get_options()) {
@@ -500,19 +489,11 @@ std::optional<std::string> unknown_word(CLI::App& app, int argc, const char* con
     const std::string_view word = argv[i];
     if (word == "--") break;  // what follows is positional, whatever it looks like
     if (!word.starts_with("--")) continue;
-    const auto name = word.substr(
-        2, word.find('=') == std::string_view::npos ? std::string_view::npos : word.find('=') - 2);
+    const auto eq = word.find('=');
+    const auto name = word.substr(2, eq == std::string_view::npos ? eq : eq - 2);
     if (std::find(known.begin(), known.end(), name) != known.end()) continue;
-    return fmt::format(
-        "unknown option --{} for 'snapjump{}'{}", name,
-        [&] {
-          std::string path;
-          for (std::size_t j = 1; j < chain.size(); ++j) {
-            path += " " + chain[j]->get_name();
-          }
-          return path;
-        }(),
-        suggestion(name, known, "--"));
+    return fmt::format("unknown option --{} for 'snapjump{}'{}", name, path,
+                       suggestion(name, known, "--"));
   }
   return std::nullopt;
 }

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "io/atomic_file.hpp"
+#include "io/csv.hpp"
 #include "io/run_status.hpp"
 #include "theory/prefactors.hpp"
 #include "theory/scaling.hpp"
@@ -150,16 +151,7 @@ std::vector<Setting> values_of(const fs::path& file, const std::string& key, con
   return out;
 }
 
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char ch : s) {
-    if (ch == '"') q += '"';
-    q += ch == '\n' ? ' ' : ch;
-  }
-  q += '"';
-  return q;
-}
+using io::csv_field;
 
 std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); }
 
