@@ -38,6 +38,30 @@ void write_vector(std::ostream& out, const char* name, const mesh::Points& a,
 
 namespace {
 
+// The <Cells> of a grid of cells of `per_cell` nodes of VTK type `type`, and the end of the file.
+void write_cells_and_close(std::ostream& out, const std::vector<int>& connectivity, int per_cell,
+                           int type) {
+  const std::size_t cells = connectivity.size() / static_cast<std::size_t>(per_cell);
+  fmt::print(out,
+             "      <Cells>\n"
+             "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+  for (std::size_t e = 0; e < cells; ++e) {
+    for (int k = 0; k < per_cell; ++k) fmt::print(out, "{} ", connectivity[e * per_cell + k]);
+    out << '\n';
+  }
+  fmt::print(out,
+             "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
+             "format=\"ascii\">\n");
+  for (std::size_t e = 0; e < cells; ++e) fmt::print(out, "{}\n", per_cell * (e + 1));
+  fmt::print(out,
+             "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
+             "format=\"ascii\">\n");
+  for (std::size_t e = 0; e < cells; ++e) fmt::print(out, "{}\n", type);
+  fmt::print(out,
+             "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
+             "</VTKFile>\n");
+}
+
 // A named set of points, written as a 0/1 point array that ParaView can threshold on.
 struct PointSet {
   const char* name;
@@ -81,24 +105,7 @@ void write_grid(const std::filesystem::path& path, const mesh::Points& x, const 
     for (double e : *energy) fmt::print(out, "{:.6g}\n", e);
     fmt::print(out, "        </DataArray>\n      </CellData>\n");
   }
-  fmt::print(out,
-             "      <Cells>\n"
-             "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-  for (std::size_t e = 0; e < cells; ++e) {
-    for (int k = 0; k < per_cell; ++k) fmt::print(out, "{} ", connectivity[e * per_cell + k]);
-    out << '\n';
-  }
-  fmt::print(out,
-             "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
-             "format=\"ascii\">\n");
-  for (std::size_t e = 0; e < cells; ++e) fmt::print(out, "{}\n", per_cell * (e + 1));
-  fmt::print(out,
-             "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
-             "format=\"ascii\">\n");
-  for (std::size_t e = 0; e < cells; ++e) fmt::print(out, "{}\n", type);
-  fmt::print(out,
-             "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
-             "</VTKFile>\n");
+  write_cells_and_close(out, connectivity, per_cell, type);
   if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
 }
 
@@ -195,24 +202,13 @@ void write_apparatus_vtu(const std::filesystem::path& path, double plate_half_wi
              "        </DataArray>\n      </Points>\n      <CellData Scalars=\"part\">\n"
              "        <DataArray type=\"UInt8\" Name=\"part\" format=\"ascii\">\n0\n");
   for (int k = 0; k < kSides; ++k) fmt::print(out, "1\n");
-  fmt::print(out,
-             "        </DataArray>\n      </CellData>\n      <Cells>\n        <DataArray "
-             "type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n0 1 2 3\n");
+  fmt::print(out, "        </DataArray>\n      </CellData>\n");
+  std::vector<int> quads{0, 1, 2, 3};
   for (int k = 0; k < kSides; ++k) {
     const int a = 4 + 2 * k, b = 4 + 2 * ((k + 1) % kSides);
-    fmt::print(out, "{} {} {} {}\n", a, b, b + 1, a + 1);
+    quads.insert(quads.end(), {a, b, b + 1, a + 1});
   }
-  fmt::print(out,
-             "        </DataArray>\n        <DataArray type=\"Int64\" Name=\"offsets\" "
-             "format=\"ascii\">\n");
-  for (int c = 0; c < cells; ++c) fmt::print(out, "{}\n", 4 * (c + 1));
-  fmt::print(out,
-             "        </DataArray>\n        <DataArray type=\"UInt8\" Name=\"types\" "
-             "format=\"ascii\">\n");
-  for (int c = 0; c < cells; ++c) fmt::print(out, "9\n");
-  fmt::print(out,
-             "        </DataArray>\n      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n"
-             "</VTKFile>\n");
+  write_cells_and_close(out, quads, 4, 9);  // VTK_QUAD
   if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
 }
 

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -127,6 +128,9 @@ std::optional<double> summary_radius(const json& summary) {
   return v > 0.0 && std::isfinite(v) ? std::optional<double>(v) : std::nullopt;
 }
 
+// The series' columns the figure draws, in the order of its datablocks (after t).
+constexpr std::array<const char*, 5> kDrawn = {"z", "r", "w", "F", "delta_p"};
+
 // One panel of the figure: its columns (names in the series), label and colours.
 struct Panel {
   std::vector<const char*> columns;
@@ -159,7 +163,7 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
   const auto& s = *read;
   {
     std::string missing;
-    for (const char* name : {"z", "r", "w", "F", "delta_p"}) {
+    for (const char* name : kDrawn) {
       if (s.has(name)) continue;
       missing += fmt::format("{}'{}'", missing.empty() ? "" : ", ", name);
     }
@@ -240,7 +244,6 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
   // (every k-th row; the largest F is kept), in the script's units.
   const auto rows_of = [&](const measure::TimeSeries& series, double dt, const char* what) {
     const auto ts = series.time();
-    const char* names[] = {"z", "r", "w", "F", "delta_p"};
     const double scale[] = {1e3, 1e3, 1e3, 1.0, dp_scale};
     std::size_t from = 0, to = ts.size();
     while (from + 1 < ts.size() && ts[from + 1] + dt <= w0) ++from;
@@ -259,9 +262,10 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
     for (std::size_t i = from; i < to; ++i) {
       if ((i - from) % stride != 0 && i != i_fmax && i + 1 != to) continue;
       std::vector<double> row{(ts[i] + dt) * 1e3};
-      for (std::size_t k = 0; k < 5; ++k) {
-        row.push_back(series.has(names[k]) ? series.column(names[k])[i] * scale[k]
-                                           : std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t k = 0; k < kDrawn.size(); ++k) {
+        // A record may lack a column: 0 there, never drawn (a non-finite value would blank the
+        // whole row of the datablock).
+        row.push_back(series.has(kDrawn[k]) ? series.column(kDrawn[k])[i] * scale[k] : 0.0);
       }
       rows.push_back(std::move(row));
     }
@@ -283,17 +287,7 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
   const std::string columns =
       fmt::format("t [ms]  z [mm]  r [mm]  w [mm]  F [N]  delta_p [{}]", kpa ? "kPa" : "Pa");
   gp += datablock("series", columns, rows_of(s, 0.0, "run"));
-  if (experiment) {
-    // A record may have fewer columns than the run: those hold 0 in its datablock and are never
-    // drawn (a non-finite value would blank the whole row).
-    auto rows = rows_of(*experiment, shift, "record");
-    for (auto& row : rows) {
-      for (auto& v : row) {
-        if (!std::isfinite(v)) v = 0.0;
-      }
-    }
-    gp += datablock("experiment", columns, rows);
-  }
+  if (experiment) gp += datablock("experiment", columns, rows_of(*experiment, shift, "record"));
 
   // Marks shared by every panel: contact states shaded, onset and launch as vertical lines.
   const auto intervals = contact_intervals(s);
@@ -367,9 +361,10 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
     panels = std::move(kept);
   }
   const int n_panels = static_cast<int>(panels.size());
-  const auto column_index = [](const char* name) {
-    const std::string_view n = name;
-    return n == "z" ? 2 : n == "r" ? 3 : n == "w" ? 4 : n == "F" ? 5 : 6;
+  const auto column_index = [](const char* name) {  // in the datablocks: t is column 1
+    const auto at = std::find_if(kDrawn.begin(), kDrawn.end(),
+                                 [&](const char* c) { return std::string_view(c) == name; });
+    return static_cast<int>(at - kDrawn.begin()) + 2;
   };
   for (int k = 0; k < n_panels; ++k) {
     const auto& p = panels[static_cast<std::size_t>(k)];
