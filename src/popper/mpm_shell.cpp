@@ -17,7 +17,7 @@ namespace {
 constexpr double kG = config::kStandardGravity;
 
 std::unique_ptr<fem::Body> make_body(const config::Case& c, const Numerics& n) {
-  auto m = n.mesh_file.empty() ? mesh::make_cap_mesh(n.cap) : load_user_mesh(c);
+  auto m = n.user_mesh ? *n.user_mesh : mesh::make_cap_mesh(n.cap);
   return std::make_unique<fem::Body>(
       std::move(m), fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
 }

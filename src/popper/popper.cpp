@@ -53,6 +53,8 @@ Numerics resolve_numerics(const config::Case& c) {
         "R, h, phi itself: run it with numerics.model = \"3d\"",
         c.source, n.mesh_file));
   }
+  // A designer's mesh is read here, before a run writes anything: a defect is an input error.
+  if (!n.mesh_file.empty()) n.user_mesh = std::make_shared<const mesh::Mesh>(load_user_mesh(c));
   n.axi_through =
       c.numerics.elements_through_thickness.value_or(axi_elements_through(c.numerics.resolution));
   n.axi_along =
@@ -107,8 +109,6 @@ void check_simulable(const config::Case& c) {
         "material.nu = 0.5 is incompressible: the simulator's compressible neo-Hookean body "
         "needs nu < 0.5 (use 0.49 for a nearly incompressible elastomer)");
   }
-  // A designer's mesh is read before anything is written: a defect is an input error.
-  if (!c.shell.mesh.empty() && c.numerics.model == config::Model::ThreeD) (void)load_user_mesh(c);
 }
 
 std::unique_ptr<ShellModel> make_shell_model(const config::Case& c, const Numerics& n,

@@ -29,16 +29,19 @@ struct Numerics {
   config::Model model = config::Model::ThreeD;
   mesh::CapSpec cap;      // mesh of the shell (3D)
   std::string mesh_file;  // a designer's own shell (.msh) instead of the cap (3D)
-  double dx = 0.0;        // grid spacing [m] (3D)
-  int axi_through = 0;    // axisymmetric: elements through h
-  int axi_along = 0;      // axisymmetric: elements along the meridian
-  double time_step_factor = kTimeStepFactor;  // elastic time step factor (3D)
-  double probe_interval = 1e-4;               // [s] between samples of the time series
-  double snapshot_interval = 5e-3;            // [s] between VTU snapshots
-  double checkpoint_interval = 0.02;          // [s] between checkpoints of a run
+  std::shared_ptr<const mesh::Mesh> user_mesh;  // that shell, read and placed (load_user_mesh)
+  double dx = 0.0;                              // grid spacing [m] (3D)
+  int axi_through = 0;                          // axisymmetric: elements through h
+  int axi_along = 0;                            // axisymmetric: elements along the meridian
+  double time_step_factor = kTimeStepFactor;    // elastic time step factor (3D)
+  double probe_interval = 1e-4;                 // [s] between samples of the time series
+  double snapshot_interval = 5e-3;              // [s] between VTU snapshots
+  double checkpoint_interval = 0.02;            // [s] between checkpoints of a run
   double end_time = 0.8;      // [s] after release, unless the flight's apex comes first
   double prep_damping = 0.0;  // [1/s] mass-proportional damping of phases 1-3
 };
+// Also reads and places a designer's mesh (shell.mesh), once: throws mesh::MeshError for a defect
+// and config::CaseError for a mesh with the axisymmetric model.
 Numerics resolve_numerics(const config::Case& c);
 // The presets' grid spacing is h over this many cells (numerics.grid_spacing overrides it). The
 // default stays at h/4 for the cost of the sparse grid's blocks at finer cells (docs/popper.md).
