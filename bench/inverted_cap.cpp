@@ -3,10 +3,14 @@
 // pressure difference to a final value (default 0: no suction) and let it settle for 0.15 s.
 // Prints whether the shell stays inverted (bistable at that pressure) and where its lowest point
 // is. The answer depends on how finely the fold next to the clamped rim is resolved
-// (docs/axisymmetric.md, "The inverted cap at rest").
+// (docs/axisymmetric.md, "The inverted cap at rest"). `3d-reduced` is the 3D body with its
+// bulk energy at one point per element (fem::BulkRule::centroid), free of volumetric locking;
+// `axisymmetric-full` the axisymmetric body with its bulk energy at the full 3 x 3 rule.
 //
-//   build/inverted_cap axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
-//   build/inverted_cap 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
+//   build/inverted_cap axisymmetric|axisymmetric-full THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm
+//   [PHI_deg]]
+//   build/inverted_cap 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm
+//   [PHI_deg]]
 #include <fmt/format.h>
 
 #include <cmath>
@@ -58,10 +62,13 @@ Result run(double& p, double pc, double final_dp, Step step, Time time, State st
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    fmt::print(stderr,
-               "usage: {0} axisymmetric THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n"
-               "       {0} 3d LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n",
-               argv[0]);
+    fmt::print(
+        stderr,
+        "usage: {0} axisymmetric|axisymmetric-full THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm "
+        "[PHI_deg]]\n"
+        "       {0} 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm "
+        "[PHI_deg]]\n",
+        argv[0]);
     return 2;
   }
   try {
@@ -77,10 +84,12 @@ int main(int argc, char** argv) {
     double p = 0.0;
     Result r;
     std::string mesh;
-    if (model == "axisymmetric") {
+    if (model == "axisymmetric" || model == "axisymmetric-full") {
+      const bool full = model == "axisymmetric-full";
       const int through = std::atoi(argv[2]), along = std::atoi(argv[3]);
-      const axi::Body body({.R = R, .h = h, .phi = phi, .through = through, .along = along},
-                           material);
+      const axi::Body body(
+          {.R = R, .h = h, .phi = phi, .through = through, .along = along, .reduced_bulk = !full},
+          material);
       axi::Dynamics d(body, 0.3 * 2.0 / body.highest_frequency());
       d.set_pressure([&p] { return p; });
       d.set_damping(3.0 * damping);
@@ -101,14 +110,16 @@ int main(int argc, char** argv) {
             s.lowest_below_rim = rim - lowest;
             return s;
           });
-      mesh = fmt::format("axisymmetric, {} through h x {} along ({:.3g} mm along)", through, along,
-                         1e3 * R * phi / along);
-    } else if (model == "3d") {
+      mesh =
+          fmt::format("axisymmetric{}, {} through h x {} along ({:.3g} mm along)",
+                      full ? " (bulk at 3 x 3 points)" : "", through, along, 1e3 * R * phi / along);
+    } else if (model == "3d" || model == "3d-reduced") {
+      const bool reduced = model == "3d-reduced";
       const int layers = std::atoi(argv[2]);
       const double size = 1e-3 * std::atof(argv[3]);
       const fem::Body body(
           mesh::make_cap_mesh({.R = R, .h = h, .phi = phi, .element_size = size, .layers = layers}),
-          material);
+          material, reduced ? fem::BulkRule::centroid : fem::BulkRule::full);
       fem::ExplicitOptions o;
       o.time_step_factor = 0.4;
       o.damping = damping;
@@ -142,10 +153,11 @@ int main(int argc, char** argv) {
             s.lowest_below_rim = rim - lowest;
             return s;
           });
-      mesh = fmt::format("3D, {} layers, element size {:.3g} mm, {} nodes", layers, 1e3 * size,
+      mesh = fmt::format("3D{}, {} layers, element size {:.3g} mm, {} nodes",
+                         reduced ? " (bulk at the centroid)" : "", layers, 1e3 * size,
                          body.num_nodes());
     } else {
-      fmt::print(stderr, "model must be axisymmetric or 3d\n");
+      fmt::print(stderr, "model must be axisymmetric, axisymmetric-full, 3d or 3d-reduced\n");
       return 2;
     }
     const std::string head = fmt::format("(R, h) = ({:.3g}, {:.3g}) mm, phi = {:.3g} deg, {}",

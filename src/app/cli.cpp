@@ -592,13 +592,19 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CaseOptions run_case;
   run_case.add_to(*run_cmd);
   RunOptions run_opts;
-  std::string run_resolution, run_model;
+  std::string run_resolution, run_model, run_bulk;
   run_cmd
       ->add_option("--model", run_model,
                    "discretisation of the shell: 3d (the paper's MPM, the default) or "
                    "axisymmetric (finite elements on the meridian section: a reference for the 3D "
                    "model, fast enough for sweeps); overrides numerics.model")
       ->check(CLI::IsMember({"3d", "axisymmetric"}));
+  run_cmd
+      ->add_option("--bulk-integration", run_bulk,
+                   "where the elements integrate the bulk energy: full (with the rest; the 3D "
+                   "default, the paper's element) or reduced (3D: at each element's centroid; "
+                   "axisymmetric: 2 x 2 points, its default); overrides numerics.bulk_integration")
+      ->check(CLI::IsMember({"full", "reduced"}));
   run_cmd->add_option("--output", run_opts.output,
                       "folder for the results (must not exist or be empty; default "
                       "runs/<case>-<date-time>)");
@@ -677,12 +683,13 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       // A new run's set-up, which --resume and --reanalyze take from the run's folder instead.
       const bool sets_up_a_run = !run_case.case_file.empty() || !run_case.values.empty() ||
                                  !run_resolution.empty() || !run_model.empty() ||
-                                 !run_opts.output.empty();
+                                 !run_bulk.empty() || !run_opts.output.empty();
       if (!reanalyze.empty()) {
         if (sets_up_a_run || !run_opts.resume.empty() || run_opts.pause_at) {
           throw config::CaseError(
               "--reanalyze reads a finished run's folder as it is: give no case file, case "
-              "values, --resolution, --model, --output, --resume or --pause-at with it");
+              "values, --resolution, --model, --bulk-integration, --output, --resume or --pause-at "
+              "with it");
         }
         return reanalyze_run(reanalyze, out);
       }
@@ -690,7 +697,8 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         if (sets_up_a_run) {
           throw config::CaseError(
               "--resume continues a run as it was set up (its case.toml, its folder): give no "
-              "case file, case values, --resolution, --model or --output with it");
+              "case file, case values, --resolution, --model, --bulk-integration or --output with "
+              "it");
         }
         run_opts.stop_requested = hooks.stop_requested;
         return run_simulation(config::Case{}, run_opts, out, err);
@@ -698,6 +706,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       auto c = run_case.load();
       if (const auto r = config::parse_resolution(run_resolution)) c.numerics.resolution = *r;
       if (const auto m = config::parse_model(run_model)) c.numerics.model = *m;
+      if (const auto b = config::parse_bulk_integration(run_bulk)) {
+        c.numerics.bulk_integration = *b;
+      }
       run_opts.stop_requested = hooks.stop_requested;
       return run_simulation(c, run_opts, out, err);
     }

@@ -133,7 +133,7 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
     }
   };
   build(full_, 3, true);
-  build(reduced_, 2, false);
+  build(reduced_, spec.reduced_bulk ? 2 : 3, false);
   for (double m : mass_) total_mass_ += m;
 }
 

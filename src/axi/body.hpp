@@ -29,6 +29,9 @@ struct MeshSpec {
   double phi = 0.0;  // polar angle of the rim [rad]
   int through = 4;   // elements through h
   int along = 0;     // elements along the meridian
+  // The bulk part at 2 x 2 Gauss points (true) or at the full 3 x 3 rule with the rest (false:
+  // the 3D model's default integration, which locks at nu near 1/2).
+  bool reduced_bulk = true;
 };
 
 // Meridian positions (structure of arrays).

@@ -67,6 +67,7 @@ constexpr KeySpec kKeys[] = {
 constexpr std::string_view kResolutionKey = "resolution";
 constexpr std::string_view kLayersKey = "elements_through_thickness";
 constexpr std::string_view kModelKey = "model";
+constexpr std::string_view kBulkKey = "bulk_integration";
 constexpr std::string_view kMeshKey = "mesh";
 constexpr std::string_view kTitleKey = "title";
 
@@ -120,7 +121,7 @@ std::string keys_of(std::string_view table) {
     out += k.name;
   }
   if (table == "numerics")
-    out += fmt::format(", {}, {}, {}", kModelKey, kResolutionKey, kLayersKey);
+    out += fmt::format(", {}, {}, {}, {}", kModelKey, kResolutionKey, kLayersKey, kBulkKey);
   if (table == "shell") out += fmt::format(", {}", kMeshKey);
   return out;
 }
@@ -215,6 +216,13 @@ class Reader {
         const auto m = parse_model(s ? std::string_view(s->get()) : std::string_view());
         if (!m) fail(key.source(), "numerics.model must be \"3d\" or \"axisymmetric\"");
         c.numerics.model = *m;
+        continue;
+      }
+      if (table_name == "numerics" && name == kBulkKey) {
+        const auto* s = node.as_string();
+        const auto b = parse_bulk_integration(s ? std::string_view(s->get()) : std::string_view());
+        if (!b) fail(key.source(), "numerics.bulk_integration must be \"full\" or \"reduced\"");
+        c.numerics.bulk_integration = *b;
         continue;
       }
       if (table_name == "shell" && name == kMeshKey) {
@@ -410,6 +418,17 @@ std::optional<Model> parse_model(std::string_view text) {
 
 std::string_view to_string(Model m) { return m == Model::Axisymmetric ? "axisymmetric" : "3d"; }
 
+std::optional<BulkIntegration> parse_bulk_integration(std::string_view text) {
+  for (const auto b : {BulkIntegration::Full, BulkIntegration::Reduced}) {
+    if (text == to_string(b)) return b;
+  }
+  return std::nullopt;
+}
+
+std::string_view to_string(BulkIntegration b) {
+  return b == BulkIntegration::Reduced ? "reduced" : "full";
+}
+
 std::span<const KeySpec> quantity_keys() { return kKeys; }
 
 std::string_view default_case_text() { return kDefaultCase; }
@@ -437,6 +456,9 @@ std::string to_toml(const Case& c) {
   toml::table numerics{{"resolution", std::string(to_string(c.numerics.resolution))}};
   if (c.numerics.model != Model::ThreeD) {
     numerics.insert("model", std::string(to_string(c.numerics.model)));
+  }
+  if (c.numerics.bulk_integration) {
+    numerics.insert("bulk_integration", std::string(to_string(*c.numerics.bulk_integration)));
   }
   if (c.numerics.element_size) numerics.insert("element_size", *c.numerics.element_size);
   if (c.numerics.grid_spacing) numerics.insert("grid_spacing", *c.numerics.grid_spacing);

@@ -82,8 +82,19 @@ std::string_view to_string(Model m);
 // "3d", "axisymmetric"; nullopt for anything else.
 std::optional<Model> parse_model(std::string_view text);
 
+// Where the elements integrate the bulk part of the energy, lambda/2 (ln J)^2: with the rest
+// (full; the 3D model's default, the paper's element) or at fewer points (reduced; the
+// axisymmetric model's default): 3D at each tetrahedron's centroid, axisymmetric at 2 x 2 Gauss
+// points instead of 3 x 3. Reduced keeps the elements from locking as nu approaches 1/2.
+enum class BulkIntegration { Full, Reduced };
+std::string_view to_string(BulkIntegration b);
+// "full", "reduced"; nullopt for anything else.
+std::optional<BulkIntegration> parse_bulk_integration(std::string_view text);
+
 struct Numerics {
   Model model = Model::ThreeD;
+  // The model's own when absent (3D full, axisymmetric reduced).
+  std::optional<BulkIntegration> bulk_integration;
   Resolution resolution = Resolution::Default;
   std::optional<double> element_size;  // [m]; from the resolution preset when absent
   std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)

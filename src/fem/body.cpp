@@ -76,8 +76,8 @@ InvertedElement::InvertedElement(int e, double px, double py, double pz)
       y(py),
       z(pz) {}
 
-Body::Body(mesh::Mesh mesh, const Material& material)
-    : mesh_(std::move(mesh)), material_(material) {
+Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
+    : mesh_(std::move(mesh)), material_(material), bulk_(bulk) {
   mesh::check_mesh(mesh_);
   const std::size_t ne = mesh_.tets.size();
   const std::size_t nn = mesh_.nodes.size();
@@ -98,22 +98,34 @@ Body::Body(mesh::Mesh mesh, const Material& material)
         }
       }
     };
-    for (int q = 0; q < kQp; ++q) {
-      const auto& p = rule[q];
-      const auto G = tet10_shape_gradients(p.r, p.s, p.t);
+    // dN/dX at (r, s, t) into g; returns det(dX/dxi).
+    const auto reference_gradients = [&](double r, double s, double t, double* g) {
+      const auto G = tet10_shape_gradients(r, s, t);
       double Jm[9];
       jacobian(G, Jm);
       const double detJ = det3(Jm);
       double Jinv_t[9];  // (dX/dxi)^-T: dN/dX = (dX/dxi)^-T dN/dxi
       inverse_transpose(Jm, detJ, Jinv_t);
-      double* g = &grad_[(e * kQp + q) * kGradStride];
       for (int a = 0; a < kTetNodes; ++a) {
         for (int i = 0; i < 3; ++i) {
           g[3 * a + i] =
               Jinv_t[3 * i] * G[a][0] + Jinv_t[3 * i + 1] * G[a][1] + Jinv_t[3 * i + 2] * G[a][2];
         }
       }
+      return detJ;
+    };
+    double element_weight = 0.0;
+    for (int q = 0; q < kQp; ++q) {
+      const auto& p = rule[q];
+      const double detJ = reference_gradients(p.r, p.s, p.t, &grad_[(e * kQp + q) * kGradStride]);
       weight_[e * kQp + q] = p.weight * detJ;
+      element_weight += p.weight * detJ;
+    }
+    if (bulk_ == BulkRule::centroid) {
+      centroid_grad_.resize(ne * kGradStride);
+      centroid_weight_.resize(ne);
+      reference_gradients(0.25, 0.25, 0.25, &centroid_grad_[e * kGradStride]);
+      centroid_weight_[e] = element_weight;
     }
     for (const auto& p : mass_rule) {
       const auto G = tet10_shape_gradients(p.r, p.s, p.t);
@@ -198,6 +210,34 @@ void throw_if_inverted(int e, const mesh::Mesh& m, const mesh::Points& x) {
 
 }  // namespace
 
+namespace {
+
+// F = sum_a x_a (dN_a/dX)^T at one point.
+[[gnu::always_inline]] inline void deformation_gradient(const double (*xe)[3], const double* g,
+                                                        double F[9]) {
+  std::fill(F, F + 9, 0.0);
+  for (int a = 0; a < kTetNodes; ++a) {
+    for (int i = 0; i < 3; ++i) {
+      F[3 * i + 0] += xe[a][i] * g[3 * a + 0];
+      F[3 * i + 1] += xe[a][i] * g[3 * a + 1];
+      F[3 * i + 2] += xe[a][i] * g[3 * a + 2];
+    }
+  }
+}
+
+// out_a -= w P dN_a/dX.
+[[gnu::always_inline]] inline void add_nodal_forces(const double P[9], const double* g, double w,
+                                                    double* out) {
+  for (int a = 0; a < kTetNodes; ++a) {
+    for (int i = 0; i < 3; ++i) {
+      out[3 * a + i] -=
+          w * (P[3 * i] * g[3 * a] + P[3 * i + 1] * g[3 * a + 1] + P[3 * i + 2] * g[3 * a + 2]);
+    }
+  }
+}
+
+}  // namespace
+
 template <bool kEnergy>
 bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
   const auto& tet = mesh_.tets[static_cast<std::size_t>(e)];
@@ -212,30 +252,39 @@ bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
   } else {
     std::fill(out, out + 3 * kTetNodes, 0.0);
   }
+  // With the bulk at the centroid, the four points carry the rest of the energy (lambda = 0).
+  Material at_points = material_;
+  if (bulk_ == BulkRule::centroid) at_points.lambda = 0.0;
   for (int q = 0; q < kQp; ++q) {
     const double* g = &grad_[(static_cast<std::size_t>(e) * kQp + q) * kGradStride];
     const double w = weight_[static_cast<std::size_t>(e) * kQp + q];
-    double F[9] = {};
-    for (int a = 0; a < kTetNodes; ++a) {
-      for (int i = 0; i < 3; ++i) {
-        F[3 * i + 0] += xe[a][i] * g[3 * a + 0];
-        F[3 * i + 1] += xe[a][i] * g[3 * a + 1];
-        F[3 * i + 2] += xe[a][i] * g[3 * a + 2];
-      }
-    }
+    double F[9];
+    deformation_gradient(xe, g, F);
     if constexpr (kEnergy) {
-      const double psi = neo_hookean_energy(material_, F);
+      const double psi = neo_hookean_energy(at_points, F);
       if (!std::isfinite(psi)) return false;
       *out += w * psi;
     } else {
       double P[9];
-      if (!neo_hookean_stress(material_, F, P)) return false;
-      for (int a = 0; a < kTetNodes; ++a) {
-        for (int i = 0; i < 3; ++i) {
-          out[3 * a + i] -=
-              w * (P[3 * i] * g[3 * a] + P[3 * i + 1] * g[3 * a + 1] + P[3 * i + 2] * g[3 * a + 2]);
-        }
-      }
+      if (!neo_hookean_stress(at_points, F, P)) return false;
+      add_nodal_forces(P, g, w, out);
+    }
+  }
+  if (bulk_ == BulkRule::centroid) {
+    const double* g = &centroid_grad_[static_cast<std::size_t>(e) * kGradStride];
+    const double w = centroid_weight_[static_cast<std::size_t>(e)];
+    double F[9];
+    deformation_gradient(xe, g, F);
+    const double J = det3(F);
+    if (!(J > 0.0)) return false;
+    const double lnJ = std::log(J);
+    if constexpr (kEnergy) {
+      *out += w * 0.5 * material_.lambda * lnJ * lnJ;
+    } else {
+      double P[9];  // lambda ln J F^-T
+      inverse_transpose(F, J, P);
+      for (double& v : P) v *= material_.lambda * lnJ;
+      add_nodal_forces(P, g, w, out);
     }
   }
   return true;

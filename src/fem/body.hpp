@@ -36,12 +36,20 @@ class InvertedElement : public std::runtime_error {
   double x, y, z;  // current position of its first corner
 };
 
+// Where the bulk part of the energy, lambda/2 (ln J)^2, is integrated. `full`: at the four
+// points of the degree-2 rule with the rest (the paper's element). `centroid`: at one point per
+// element, the rest at four (selective integration: one volume constraint per element instead of
+// four, which keeps the ten-node tetrahedron from locking as nu approaches 1/2; the same split
+// the axisymmetric body makes). On an element whose deformation is homogeneous the two agree.
+enum class BulkRule { full, centroid };
+
 class Body {
  public:
-  Body(mesh::Mesh mesh, const Material& material);
+  Body(mesh::Mesh mesh, const Material& material, BulkRule bulk = BulkRule::full);
 
   [[nodiscard]] const mesh::Mesh& mesh() const { return mesh_; }
   [[nodiscard]] const Material& material() const { return material_; }
+  [[nodiscard]] BulkRule bulk_rule() const { return bulk_; }
   [[nodiscard]] std::size_t num_nodes() const { return mesh_.nodes.size(); }
   [[nodiscard]] std::size_t num_elements() const { return mesh_.tets.size(); }
   [[nodiscard]] const std::vector<double>& mass() const { return mass_; }
@@ -88,8 +96,13 @@ class Body {
 
   mesh::Mesh mesh_;
   Material material_;
+  BulkRule bulk_ = BulkRule::full;
   std::vector<double> grad_;    // [element][qp][node][3] reference shape gradients dN/dX
   std::vector<double> weight_;  // [element][qp] quadrature weight * det(dX/dxi)
+  // BulkRule::centroid only: dN/dX at each element's centroid, and the element's quadrature
+  // volume (the sum of its four weights) as that point's weight.
+  std::vector<double> centroid_grad_;
+  std::vector<double> centroid_weight_;
   std::vector<double> mass_;
   double total_mass_ = 0.0;
   double volume_ = 0.0;

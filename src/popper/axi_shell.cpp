@@ -22,7 +22,8 @@ axi::Body make_body(const config::Case& c, const Numerics& n) {
                                  .h = c.shell.h,
                                  .phi = c.shell.phi,
                                  .through = n.axi_through,
-                                 .along = n.axi_along},
+                                 .along = n.axi_along,
+                                 .reduced_bulk = n.reduced_bulk},
                    fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
 }
 
@@ -43,17 +44,23 @@ std::string AxiShell::describe() const {
   return fmt::format(
       "  model       axisymmetric (9-node elements on the meridian section, the plate exact on "
       "the nodes)\n  mesh        {} x {} elements (along the meridian x through h), {} nodes; "
-      "element {:.3g} mm along, {:.3g} mm through\n  time step   {:.3g} us ({} of the "
-      "stability limit 2 / omega_max, omega_max = {:.4g} rad/s)\n",
+      "element {:.3g} mm along, {:.3g} mm through\n  bulk energy {}\n  time step   {:.3g} us ({} "
+      "of the stability limit 2 / omega_max, omega_max = {:.4g} rad/s)\n",
       s.along, s.through, body_.num_nodes(), 1e3 * s.R * s.phi / s.along, 1e3 * s.h / s.through,
+      s.reduced_bulk ? "at 2 x 2 Gauss points, the rest at 3 x 3 (selective, free of locking)"
+                     : "at 3 x 3 Gauss points with the rest (numerics.bulk_integration = \"full\")",
       1e6 * dynamics_.dt(), kAxiStabilityFraction, omega_max_);
 }
 
 nlohmann::json AxiShell::numerics_json() const {
   const auto& s = body_.spec();
-  return {{"model", "axisymmetric"},       {"elements", body_.num_elements()},
-          {"nodes", body_.num_nodes()},    {"elements_along", s.along},
-          {"elements_through", s.through}, {"dt", dynamics_.dt()},
+  return {{"model", "axisymmetric"},
+          {"bulk_integration", s.reduced_bulk ? "reduced" : "full"},
+          {"elements", body_.num_elements()},
+          {"nodes", body_.num_nodes()},
+          {"elements_along", s.along},
+          {"elements_through", s.through},
+          {"dt", dynamics_.dt()},
           {"omega_max", omega_max_}};
 }
 

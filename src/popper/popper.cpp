@@ -45,6 +45,10 @@ int axi_elements_through(config::Resolution r) {
 Numerics resolve_numerics(const config::Case& c) {
   Numerics n;
   n.model = c.numerics.model;
+  n.reduced_bulk = c.numerics.bulk_integration.value_or(n.model == config::Model::Axisymmetric
+                                                            ? config::BulkIntegration::Reduced
+                                                            : config::BulkIntegration::Full) ==
+                   config::BulkIntegration::Reduced;
   n.cap = mesh::cap_spec(c);
   n.mesh_file = c.shell.mesh;
   if (!n.mesh_file.empty() && n.model == config::Model::Axisymmetric) {

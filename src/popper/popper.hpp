@@ -27,6 +27,8 @@ inline constexpr double kTimeStepFactor = 0.5;
 // Numerical settings resolved from the case's [numerics] table.
 struct Numerics {
   config::Model model = config::Model::ThreeD;
+  // The bulk energy at fewer points (numerics.bulk_integration; the model's own default).
+  bool reduced_bulk = false;
   mesh::CapSpec cap;      // mesh of the shell (3D)
   std::string mesh_file;  // a designer's own shell (.msh) instead of the cap (3D)
   std::shared_ptr<const mesh::Mesh> user_mesh;  // that shell, read and placed (load_user_mesh)

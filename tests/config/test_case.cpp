@@ -222,6 +222,15 @@ TEST(CaseFile, NonFiniteNumbersAreRejected) {
   expect_error(replace(kMinimal, "R = \"30 mm\"", "R = inf"), {"case.toml:2", "not a finite"});
 }
 
+TEST(CaseFile, BulkIntegrationIsFullOrReduced) {
+  EXPECT_EQ(parse_case(kMinimal + "[numerics]\nbulk_integration = \"reduced\"\n", "case.toml")
+                .numerics.bulk_integration,
+            BulkIntegration::Reduced);
+  expect_error(kMinimal + "[numerics]\nbulk_integration = \"selective\"\n",
+               {"case.toml:", "numerics.bulk_integration must be \"full\" or \"reduced\""});
+  expect_error(kMinimal + "[numerics]\nbulk = \"full\"\n", {"bulk_integration"});
+}
+
 TEST(CaseFile, BadOverrideNamesTheFlag) {
   expect_error(kMinimal, {"--R", "shell.R", "is a mass"}, {{"shell.R", "30 g", "--R"}});
 }
@@ -232,8 +241,13 @@ TEST(CaseFile, WrittenInSIAndReadBackTheSame) {
   c.numerics.resolution = Resolution::Coarse;
   c.numerics.model = Model::Axisymmetric;
   c.numerics.end_time = 0.3;
+  c.numerics.bulk_integration = BulkIntegration::Full;
   const auto r = parse_case(to_toml(c), "written.toml");
   EXPECT_EQ(r.numerics.model, Model::Axisymmetric);
+  EXPECT_EQ(r.numerics.bulk_integration, BulkIntegration::Full);
+  EXPECT_FALSE(parse_case(to_toml(parse_case(kMinimal, "case.toml")), "again.toml")
+                   .numerics.bulk_integration)
+      << "absent stays absent: each model keeps its own default";
   EXPECT_EQ(r.title, c.title);
   EXPECT_EQ(r.shell.R, c.shell.R);
   EXPECT_EQ(r.shell.h, c.shell.h);

@@ -21,11 +21,17 @@ namespace {
 constexpr double kR = 0.030, kH = 0.002;
 const double kPhi = 80.0 * std::numbers::pi / 180.0;
 
-const Body& coarse_cap() {
-  static const Body body(
+const Body& coarse_cap(BulkRule bulk = BulkRule::full) {
+  static const Body full(
       mesh::make_cap_mesh({.R = kR, .h = kH, .phi = kPhi, .element_size = 0.006, .layers = 2}),
       Material::from_young(1.2e6, 0.45, 1160.0));
-  return body;
+  static const Body centroid(full.mesh(), full.material(), BulkRule::centroid);
+  return bulk == BulkRule::full ? full : centroid;
+}
+
+constexpr BulkRule kRules[] = {BulkRule::full, BulkRule::centroid};
+const char* name(BulkRule r) {
+  return r == BulkRule::full ? "bulk at four points" : "bulk at the centroid";
 }
 
 mesh::Points map_points(const mesh::Points& X, const double A[9], const double b[3]) {
@@ -102,50 +108,58 @@ TEST(Body, MeshedVolumeMatchesTheCap) {
 }
 
 TEST(Body, RigidMotionGivesZeroForceAndEnergy) {
-  const auto& body = coarse_cap();
-  const double c = std::cos(0.7), s = std::sin(0.7);
-  const double Q[9] = {c, -s, 0, s, c, 0, 0, 0, 1};  // rotation about z, then about x below
-  const double Rx[9] = {1, 0, 0, 0, std::cos(0.3), -std::sin(0.3), 0, std::sin(0.3), std::cos(0.3)};
-  double A[9] = {};
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j)
-      for (int k = 0; k < 3; ++k) A[3 * i + j] += Rx[3 * i + k] * Q[3 * k + j];
-  const double b[3] = {0.01, -0.02, 0.005};
-  const auto x = map_points(body.mesh().nodes, A, b);
-  mesh::Points f;
-  body.internal_forces(x, f);
-  // Scale: the force of a 1e-3 strain on one element's worth of area.
-  const double scale = body.material().mu * 1e-3 * 1e-6;
-  EXPECT_LT(max_abs(f), 1e-6 * scale);
-  EXPECT_NEAR(body.strain_energy(x), 0.0, 1e-12);
+  for (const BulkRule rule : kRules) {
+    SCOPED_TRACE(name(rule));
+    const auto& body = coarse_cap(rule);
+    const double c = std::cos(0.7), s = std::sin(0.7);
+    const double Q[9] = {c, -s, 0, s, c, 0, 0, 0, 1};  // rotation about z, then about x below
+    const double Rx[9] = {
+        1, 0, 0, 0, std::cos(0.3), -std::sin(0.3), 0, std::sin(0.3), std::cos(0.3)};
+    double A[9] = {};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 3; ++k) A[3 * i + j] += Rx[3 * i + k] * Q[3 * k + j];
+    const double b[3] = {0.01, -0.02, 0.005};
+    const auto x = map_points(body.mesh().nodes, A, b);
+    mesh::Points f;
+    body.internal_forces(x, f);
+    // Scale: the force of a 1e-3 strain on one element's worth of area.
+    const double scale = body.material().mu * 1e-3 * 1e-6;
+    EXPECT_LT(max_abs(f), 1e-6 * scale);
+    EXPECT_NEAR(body.strain_energy(x), 0.0, 1e-12);
+  }
 }
 
 // Patch test: an affine deformation x = A X + b has uniform F = A. The nodal forces then satisfy
 // sum_a f_a (x) X_a = -P(A) V exactly, with P the analytic neo-Hookean stress, and interior
-// nodes carry no force.
+// nodes carry no force. Both bulk rules: F is the same at every point.
 TEST(Body, AffinePatchTestReproducesTheAnalyticStress) {
-  const auto& body = coarse_cap();
-  const double A[9] = {1.02, 0.01, -0.005, 0.003, 0.99, 0.012, -0.004, 0.006, 1.015};
-  const double b[3] = {0.001, 0.002, -0.003};
-  const auto x = map_points(body.mesh().nodes, A, b);
-  mesh::Points f;
-  body.internal_forces(x, f);
-  double P[9];
-  ASSERT_TRUE(neo_hookean_stress(body.material(), A, P));
-  const auto& X = body.mesh().nodes;
-  double moment[9] = {};
-  for (std::size_t a = 0; a < X.size(); ++a) {
-    const double fa[3] = {f.x[a], f.y[a], f.z[a]}, Xa[3] = {X.x[a], X.y[a], X.z[a]};
-    for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) moment[3 * i + j] += fa[i] * Xa[j];
+  for (const BulkRule rule : kRules) {
+    SCOPED_TRACE(name(rule));
+    const auto& body = coarse_cap(rule);
+    const double A[9] = {1.02, 0.01, -0.005, 0.003, 0.99, 0.012, -0.004, 0.006, 1.015};
+    const double b[3] = {0.001, 0.002, -0.003};
+    const auto x = map_points(body.mesh().nodes, A, b);
+    mesh::Points f;
+    body.internal_forces(x, f);
+    double P[9];
+    ASSERT_TRUE(neo_hookean_stress(body.material(), A, P));
+    const auto& X = body.mesh().nodes;
+    double moment[9] = {};
+    for (std::size_t a = 0; a < X.size(); ++a) {
+      const double fa[3] = {f.x[a], f.y[a], f.z[a]}, Xa[3] = {X.x[a], X.y[a], X.z[a]};
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) moment[3 * i + j] += fa[i] * Xa[j];
+    }
+    // The identity holds for the volume the force quadrature integrates (curved elements make it
+    // differ from the exact volume by a few 1e-6).
+    const double V = body.quadrature_volume();
+    EXPECT_NEAR(V / body.reference_volume(), 1.0, 1e-4);
+    double pmax = 0;
+    for (double p : P) pmax = std::max(pmax, std::abs(p));
+    for (int k = 0; k < 9; ++k) EXPECT_NEAR(moment[k], -P[k] * V, 1e-9 * pmax * V) << k;
+    EXPECT_NEAR(body.strain_energy(x), V * neo_hookean_energy(body.material(), A), 1e-9 * pmax * V);
   }
-  // The identity holds for the volume the force quadrature integrates (curved elements make it
-  // differ from the exact volume by a few 1e-6).
-  const double V = body.quadrature_volume();
-  EXPECT_NEAR(V / body.reference_volume(), 1.0, 1e-4);
-  double pmax = 0;
-  for (double p : P) pmax = std::max(pmax, std::abs(p));
-  for (int k = 0; k < 9; ++k) EXPECT_NEAR(moment[k], -P[k] * V, 1e-9 * pmax * V) << k;
 }
 
 // On straight-sided elements (edge nodes at the chord midpoints) the degree-2 rule integrates
@@ -160,55 +174,83 @@ TEST(Body, AffinePatchTestLeavesInteriorNodesFreeOnStraightElements) {
       m.nodes.z[mid] = 0.5 * (m.nodes.z[i] + m.nodes.z[j]);
     }
   }
-  const Body body(m, coarse_cap().material());
-  EXPECT_NEAR(body.quadrature_volume() / body.reference_volume(), 1.0, 1e-13);
-  const double A[9] = {1.02, 0.01, -0.005, 0.003, 0.99, 0.012, -0.004, 0.006, 1.015};
-  const double b[3] = {0.001, 0.002, -0.003};
-  const auto x = map_points(body.mesh().nodes, A, b);
-  mesh::Points f;
-  body.internal_forces(x, f);
-  std::vector<char> boundary(x.size(), 0);
-  for (const auto& face : mesh::boundary_faces(body.mesh())) {
-    for (int a : face) boundary[a] = 1;
+  for (const BulkRule rule : kRules) {
+    SCOPED_TRACE(name(rule));
+    const Body body(m, coarse_cap().material(), rule);
+    EXPECT_NEAR(body.quadrature_volume() / body.reference_volume(), 1.0, 1e-13);
+    const double A[9] = {1.02, 0.01, -0.005, 0.003, 0.99, 0.012, -0.004, 0.006, 1.015};
+    const double b[3] = {0.001, 0.002, -0.003};
+    const auto x = map_points(body.mesh().nodes, A, b);
+    mesh::Points f;
+    body.internal_forces(x, f);
+    std::vector<char> boundary(x.size(), 0);
+    for (const auto& face : mesh::boundary_faces(body.mesh())) {
+      for (int a : face) boundary[a] = 1;
+    }
+    int interior = 0;
+    const double fscale = max_abs(f);
+    for (std::size_t a = 0; a < x.size(); ++a) {
+      if (boundary[a]) continue;
+      ++interior;
+      EXPECT_LT(std::abs(f.x[a]) + std::abs(f.y[a]) + std::abs(f.z[a]), 1e-9 * fscale) << a;
+    }
+    EXPECT_GT(interior, 10);
   }
-  int interior = 0;
-  const double fscale = max_abs(f);
-  for (std::size_t a = 0; a < x.size(); ++a) {
-    if (boundary[a]) continue;
-    ++interior;
-    EXPECT_LT(std::abs(f.x[a]) + std::abs(f.y[a]) + std::abs(f.z[a]), 1e-9 * fscale) << a;
-  }
-  EXPECT_GT(interior, 10);
 }
 
 TEST(Body, ForcesAreMinusTheEnergyGradient) {
-  const auto& body = coarse_cap();
-  std::mt19937 rng(3);
-  std::normal_distribution<double> noise(0.0, 2e-5);
-  auto x = body.mesh().nodes;
-  for (std::size_t a = 0; a < x.size(); ++a) {
-    x.x[a] += noise(rng);
-    x.y[a] += noise(rng);
-    x.z[a] += noise(rng);
+  for (const BulkRule rule : kRules) {
+    SCOPED_TRACE(name(rule));
+    const auto& body = coarse_cap(rule);
+    std::mt19937 rng(3);
+    std::normal_distribution<double> noise(0.0, 2e-5);
+    auto x = body.mesh().nodes;
+    for (std::size_t a = 0; a < x.size(); ++a) {
+      x.x[a] += noise(rng);
+      x.y[a] += noise(rng);
+      x.z[a] += noise(rng);
+    }
+    mesh::Points f;
+    body.internal_forces(x, f);
+    std::uniform_int_distribution<int> pick(0, static_cast<int>(x.size()) - 1);
+    const double h = 1e-7;
+    for (int k = 0; k < 20; ++k) {
+      const int a = pick(rng);
+      auto xp = x, xm = x;
+      xp.z[a] += h;
+      xm.z[a] -= h;
+      const double dW = (body.strain_energy(xp) - body.strain_energy(xm)) / (2 * h);
+      EXPECT_NEAR(f.z[a], -dW, 1e-5 * std::abs(dW) + 1e-6 * max_abs(f)) << "node " << a;
+      xp = x;
+      xm = x;
+      xp.x[a] += h;
+      xm.x[a] -= h;
+      const double dWx = (body.strain_energy(xp) - body.strain_energy(xm)) / (2 * h);
+      EXPECT_NEAR(f.x[a], -dWx, 1e-5 * std::abs(dWx) + 1e-6 * max_abs(f)) << "node " << a;
+    }
   }
-  mesh::Points f;
-  body.internal_forces(x, f);
-  std::uniform_int_distribution<int> pick(0, static_cast<int>(x.size()) - 1);
-  const double h = 1e-7;
-  for (int k = 0; k < 20; ++k) {
-    const int a = pick(rng);
-    auto xp = x, xm = x;
-    xp.z[a] += h;
-    xm.z[a] -= h;
-    const double dW = (body.strain_energy(xp) - body.strain_energy(xm)) / (2 * h);
-    EXPECT_NEAR(f.z[a], -dW, 1e-5 * std::abs(dW) + 1e-6 * max_abs(f)) << "node " << a;
-    xp = x;
-    xm = x;
-    xp.x[a] += h;
-    xm.x[a] -= h;
-    const double dWx = (body.strain_energy(xp) - body.strain_energy(xm)) / (2 * h);
-    EXPECT_NEAR(f.x[a], -dWx, 1e-5 * std::abs(dWx) + 1e-6 * max_abs(f)) << "node " << a;
+}
+
+// The two rules integrate the same energy differently: they agree for homogeneous deformation
+// (above) and differ where the volume change varies within an element, the bulk at the centroid
+// seeing only its mean. Bending the cap's thickness with a varying dilatation shows both.
+TEST(Body, TheBulkRulesDifferOnlyInTheBulkEnergy) {
+  const auto& full = coarse_cap(BulkRule::full);
+  const auto& centroid = coarse_cap(BulkRule::centroid);
+  auto x = full.mesh().nodes;
+  for (std::size_t a = 0; a < x.size(); ++a) {  // a dilatation growing with z (quadratic field)
+    const double s = 1.0 + 3.0 * (x.z[a] + kR);
+    x.x[a] *= s;
+    x.y[a] *= s;
   }
+  const double Wf = full.strain_energy(x), Wc = centroid.strain_energy(x);
+  EXPECT_GT(std::abs(Wf - Wc), 1e-4 * Wf);
+  // With lambda = 0 the rules coincide: the difference is the bulk term's alone.
+  Material no_bulk = full.material();
+  no_bulk.lambda = 0.0;
+  const Body full0(full.mesh(), no_bulk, BulkRule::full);
+  const Body centroid0(full.mesh(), no_bulk, BulkRule::centroid);
+  EXPECT_NEAR(full0.strain_energy(x), centroid0.strain_energy(x), 1e-12 * Wf);
 }
 
 TEST(Body, PressureLoadIsDeltaPTimesVolumeGradient) {

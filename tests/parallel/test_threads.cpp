@@ -118,13 +118,13 @@ bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
 
-fem::Body small_cap() {
+fem::Body small_cap(fem::BulkRule bulk = fem::BulkRule::full) {
   return fem::Body(mesh::make_cap_mesh({.R = 0.030,
                                         .h = 0.002,
                                         .phi = 80.0 * std::numbers::pi / 180,
                                         .element_size = 0.005,
                                         .layers = 2}),
-                   fem::Material::from_young(1.2e6, 0.45, 1160.0));
+                   fem::Material::from_young(1.2e6, 0.45, 1160.0), bulk);
 }
 
 struct StepState {
@@ -181,22 +181,25 @@ TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
 }
 
 TEST(Threads, InternalForcesAndExplicitStepsAreTheSameAtOneAndFourThreads) {
-  const auto shell = small_cap();
-  const auto run = [&](int threads) {
-    const parallel::ScopedThreadCount count(threads);
-    fem::ExplicitOptions o;
-    o.pressure = [](double) { return 3000.0; };
-    o.tune_threads = false;
-    fem::ExplicitDriver d(shell, o);
-    for (int k = 0; k < 100; ++k) d.step();
-    mesh::Points f;
-    shell.internal_forces(d.positions(), f);
-    return std::pair{d.positions(), f};
-  };
-  const auto [x1, f1] = run(1);
-  const auto [x4, f4] = run(4);
-  EXPECT_TRUE(same_bits(x1.x, x4.x) && same_bits(x1.y, x4.y) && same_bits(x1.z, x4.z));
-  EXPECT_TRUE(same_bits(f1.x, f4.x) && same_bits(f1.y, f4.y) && same_bits(f1.z, f4.z));
+  for (const auto bulk : {fem::BulkRule::full, fem::BulkRule::centroid}) {
+    SCOPED_TRACE(bulk == fem::BulkRule::full ? "bulk at four points" : "bulk at the centroid");
+    const auto shell = small_cap(bulk);
+    const auto run = [&](int threads) {
+      const parallel::ScopedThreadCount count(threads);
+      fem::ExplicitOptions o;
+      o.pressure = [](double) { return 3000.0; };
+      o.tune_threads = false;
+      fem::ExplicitDriver d(shell, o);
+      for (int k = 0; k < 100; ++k) d.step();
+      mesh::Points f;
+      shell.internal_forces(d.positions(), f);
+      return std::pair{d.positions(), f};
+    };
+    const auto [x1, f1] = run(1);
+    const auto [x4, f4] = run(4);
+    EXPECT_TRUE(same_bits(x1.x, x4.x) && same_bits(x1.y, x4.y) && same_bits(x1.z, x4.z));
+    EXPECT_TRUE(same_bits(f1.x, f4.x) && same_bits(f1.y, f4.y) && same_bits(f1.z, f4.z));
+  }
 }
 
 }  // namespace

@@ -64,12 +64,24 @@ TEST(ShellValidation, LameThickSphereExactSolution) {
 // membrane state, a uniform radial displacement w = p R^2 (1 - nu) / (2 E h), carried along by a
 // rigid translation t e_z (the clamp holds the rim, where the membrane state would move it by w
 // along the normal, i.e. by w cos(phi) along z). Fit u = -w n + t e_z on the outer nodes within
-// 40 deg of the apex.
-TEST(ShellValidation, MembraneStateUnderSmallPressure) {
-  const double R = 0.030, h = 0.001, nu = 0.45, dp = 20.0;
+// 40 deg of the apex. With either bulk rule (fem::BulkRule).
+struct MembraneCase {
+  double nu;
+  BulkRule bulk;
+};
+
+void PrintTo(const MembraneCase& c, std::ostream* os) {
+  *os << "nu = " << c.nu
+      << (c.bulk == BulkRule::full ? ", bulk at four points" : ", bulk at the centroid");
+}
+
+class MembraneState : public ::testing::TestWithParam<MembraneCase> {};
+
+TEST_P(MembraneState, UnderSmallPressure) {
+  const double R = 0.030, h = 0.001, nu = GetParam().nu, dp = 20.0;
   const Body body(
       mesh::make_cap_mesh({.R = R, .h = h, .phi = kPhi, .element_size = 0.003, .layers = 1}),
-      Material::from_young(kE, nu, kRho));
+      Material::from_young(kE, nu, kRho), GetParam().bulk);
   ExplicitOptions o;
   o.time_step_factor = 0.5;
   o.damping = 1000.0;
@@ -99,14 +111,20 @@ TEST(ShellValidation, MembraneStateUnderSmallPressure) {
   const Eigen::Vector2d wt = A.ldlt().solve(rhs);
   const double membrane = dp * R * R * (1 - nu) / (2 * kE * h);
   const int apex = body.mesh().apex;
-  std::printf("membrane: raw apex displacement %.5e m = %.4f p R^2 (1 - nu) / (2 E h)\n",
-              x.z[apex] - X.z[apex], (x.z[apex] - X.z[apex]) / membrane);
+  std::printf(
+      "membrane (nu = %.2f, %s): raw apex displacement %.5e m = %.4f p R^2 (1 - nu) / (2 E h)\n",
+      nu, GetParam().bulk == BulkRule::full ? "full" : "centroid", x.z[apex] - X.z[apex],
+      (x.z[apex] - X.z[apex]) / membrane);
   std::printf(
       "membrane: fitted w %.5e m, p R^2 (1 - nu) / (2 E h) = %.5e m (ratio %.4f); "
       "translation %.3e m = %.3f w (cos phi = %.3f)\n",
       wt(0), membrane, wt(0) / membrane, wt(1), wt(1) / wt(0), std::cos(kPhi));
   EXPECT_NEAR(wt(0) / membrane, 1.0, 0.05);
 }
+
+INSTANTIATE_TEST_SUITE_P(ShellValidation, MembraneState,
+                         ::testing::Values(MembraneCase{0.45, BulkRule::full},
+                                           MembraneCase{0.45, BulkRule::centroid}));
 
 struct Shell {
   double R_mm, h_mm;
