@@ -15,8 +15,8 @@
 
 #include "config/case.hpp"
 #include "fem/body.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/stepper.hpp"
 #include "popper/popper.hpp"
 
@@ -47,7 +47,7 @@ constexpr int kRestart = 500;
 struct Setup {
   explicit Setup(const fem::Body& body, bool tuned)
       : forces(body, 9.80665, [](double) { return 1000.0; }),
-        stepper(mpm::particles_of(body), forces, options(body, tuned)) {
+        stepper(hybrid::particles_of(body), forces, options(body, tuned)) {
     container.mass = 0.04;
     stepper.add_rule(std::make_unique<mpm::ClampRule>(container));
     stepper.add_rule(std::make_unique<mpm::PlateRule>(0.3));
@@ -59,7 +59,7 @@ struct Setup {
     o.tune_threads = tuned;
     return o;
   }
-  mpm::BodyForces forces;
+  hybrid::BodyForces forces;
   mpm::Stepper stepper;
   mpm::RigidBody container;
 };

@@ -14,8 +14,8 @@
 
 #include "config/case.hpp"
 #include "fem/explicit.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/stepper.hpp"
 #include "popper/popper.hpp"
 
@@ -47,8 +47,8 @@ void scan_mpm(const fem::Body& body, double dx) {
   constexpr double kSpeed = 2.0;  // m/s, the popper's expected top speed (mpm_shell.cpp)
   for (const double factor : kFactors) {
     // The cap hangs apex down (the popper's orientation), its apex 0.2 mm above the plate.
-    mpm::BodyForces forces(body, 9.80665, [](double) { return 3000.0; });
-    auto particles = mpm::particles_of(body);
+    hybrid::BodyForces forces(body, 9.80665, [](double) { return 3000.0; });
+    auto particles = hybrid::particles_of(body);
     const double zmin = *std::min_element(particles.x.z.begin(), particles.x.z.end());
     for (std::size_t i = 0; i < particles.size(); ++i) {
       particles.x.z[i] += 0.0002 - zmin;

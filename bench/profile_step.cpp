@@ -9,8 +9,8 @@
 
 #include "config/case.hpp"
 #include "fem/body.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/stepper.hpp"
 #include "popper/popper.hpp"
 
@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
   mesh::translate_z(m, c.shell.R + c.shell.h);
   const fem::Body body(std::move(m),
                        fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
-  mpm::BodyForces forces(body, config::kStandardGravity, [](double) { return 1000.0; });
-  mpm::Stepper s(mpm::particles_of(body), forces,
+  hybrid::BodyForces forces(body, config::kStandardGravity, [](double) { return 1000.0; });
+  mpm::Stepper s(hybrid::particles_of(body), forces,
                  {body.stable_time_step(numerics.time_step_factor), numerics.dx, 0.5});
   mpm::RigidBody container;
   container.mass = 0.04;

@@ -22,7 +22,7 @@ Dynamics::Dynamics(const Body& body, double dt) : body_(body), dt_(dt) {
 
 void Dynamics::hold_rim() { container_ = nullptr; }
 
-void Dynamics::attach(fem::RigidBody& container, double mu, double rim_offset) {
+void Dynamics::attach(core::RigidBody& container, double mu, double rim_offset) {
   container_ = &container;
   mu_ = mu;
   rim_offset_ = rim_offset;

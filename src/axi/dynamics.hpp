@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "axi/body.hpp"
-#include "fem/rigid_body.hpp"
+#include "core/rigid_body.hpp"
 
 namespace snapjump::axi {
 
@@ -30,7 +30,7 @@ class Dynamics {
   void hold_rim();
   // From now on the rim moves with the container along z, at its reference height plus
   // rim_offset plus the container's z, and the plate acts with friction mu.
-  void attach(fem::RigidBody& container, double mu, double rim_offset);
+  void attach(core::RigidBody& container, double mu, double rim_offset);
   // Moves every node by dz.
   void translate_z(double dz);
   void zero_velocities();
@@ -67,7 +67,7 @@ class Dynamics {
   double gravity_ = 0.0;
   double mu_ = 0.0;
   std::function<double()> pressure_;
-  fem::RigidBody* container_ = nullptr;
+  core::RigidBody* container_ = nullptr;
   Points x_, v_, f_;
   std::vector<char> rim_, axis_, outer_, loaded_;
   double rim_offset_ = 0.0;

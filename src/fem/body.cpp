@@ -7,9 +7,20 @@
 #include <cmath>
 #include <limits>
 
-#include "fem/tet10.hpp"
+#include "mesh/tet10.hpp"
 
 namespace snapjump::fem {
+
+using mesh::kTetNodes;
+using mesh::kTriNodes;
+using mesh::tet10_shape;
+using mesh::tet10_shape_gradients;
+using mesh::tet_rule_degree2;
+using mesh::tet_rule_degree5;
+using mesh::tri6_shape;
+using mesh::tri6_shape_gradients;
+using mesh::tri_rule_degree4;
+
 namespace {
 
 constexpr int kQp = 4;  // points of the degree-2 rule

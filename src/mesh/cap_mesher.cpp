@@ -8,8 +8,8 @@
 #include <numbers>
 #include <unordered_map>
 
-#include "fem/tet10.hpp"
 #include "mesh/gmsh_session.hpp"
+#include "mesh/tet10.hpp"
 
 namespace snapjump::mesh {
 namespace {
@@ -191,8 +191,7 @@ Mesh make_cap_mesh(const CapSpec& s) {
         if (vol6 < 0) std::swap(c[1], c[2]);
         std::array<int, 10> tet{};
         for (int a = 0; a < 4; ++a) tet[a] = c[a];
-        for (int e = 0; e < 6; ++e)
-          tet[4 + e] = edge(c[fem::kTetEdges[e][0]], c[fem::kTetEdges[e][1]]);
+        for (int e = 0; e < 6; ++e) tet[4 + e] = edge(c[kTetEdges[e][0]], c[kTetEdges[e][1]]);
         m.tets.push_back(tet);
       }
     }

@@ -6,14 +6,14 @@
 #include <cmath>
 #include <map>
 
-#include "fem/tet10.hpp"
+#include "mesh/tet10.hpp"
 
 namespace snapjump::mesh {
 namespace {
 
 // det of dX/d(r,s,t) for element e at reference point (r, s, t).
 double jacobian_det(const Mesh& m, const std::array<int, 10>& tet, double r, double s, double t) {
-  const auto G = fem::tet10_shape_gradients(r, s, t);
+  const auto G = tet10_shape_gradients(r, s, t);
   double J[3][3] = {};
   for (int a = 0; a < 10; ++a) {
     const double X[3] = {m.nodes.x[tet[a]], m.nodes.y[tet[a]], m.nodes.z[tet[a]]};
@@ -54,7 +54,7 @@ void check_mesh(const Mesh& m) {
     const auto& tet = m.tets[e];
     // Scale: longest corner edge, for a relative degeneracy test.
     double longest = 0.0;
-    for (const auto& ed : fem::kTetEdges) {
+    for (const auto& ed : kTetEdges) {
       const int a = tet[ed[0]], b = tet[ed[1]];
       longest =
           std::max(longest, std::hypot(m.nodes.x[a] - m.nodes.x[b], m.nodes.y[a] - m.nodes.y[b],
@@ -77,7 +77,7 @@ void check_mesh(const Mesh& m) {
                         where(m, static_cast<int>(e)), p[0], p[1], p[2]));
       }
     }
-    for (const auto& q : fem::tet_rule_degree2()) {
+    for (const auto& q : tet_rule_degree2()) {
       if (jacobian_det(m, tet, q.r, q.s, q.t) <= tiny) {
         throw MeshError(
             fmt::format("{} is distorted: its Jacobian is not positive at a quadrature "

@@ -8,24 +8,12 @@
 #include <vector>
 
 #include "config/input_error.hpp"
+#include "core/points.hpp"
 
 namespace snapjump::mesh {
 
-// Structure of arrays: node a is at (x[a], y[a], z[a]).
-struct Points {
-  std::vector<double> x, y, z;
-  [[nodiscard]] std::size_t size() const { return x.size(); }
-  void resize(std::size_t n) {
-    x.resize(n);
-    y.resize(n);
-    z.resize(n);
-  }
-  void push_back(double px, double py, double pz) {
-    x.push_back(px);
-    y.push_back(py);
-    z.push_back(pz);
-  }
-};
+// Node a is at (x[a], y[a], z[a]).
+using Points = core::Points;
 
 struct Mesh {
   Points nodes;                                 // reference positions [m]

@@ -75,7 +75,7 @@ std::array<std::int64_t, 3> SparseGrid::coords(std::size_t n) const {
           b[2] * kBlock + l % kBlock};
 }
 
-void SparseGrid::rebuild(const mesh::Points& x) {
+void SparseGrid::rebuild(const core::Points& x) {
   const std::size_t np = x.size();
   const double inv_dx = 1.0 / dx_;
   auto& keys = scratch_keys_;

@@ -10,7 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "mesh/mesh.hpp"
+#include "core/points.hpp"
 
 namespace snapjump::mpm {
 
@@ -27,7 +27,7 @@ class SparseGrid {
   // the node data and groups the particles by the block of their stencil's first node. When no
   // particle has changed block, nor reaches into other neighbour blocks, since the last call, the
   // blocks and groups are kept.
-  void rebuild(const mesh::Points& x);
+  void rebuild(const core::Points& x);
 
   // --- nodes ---------------------------------------------------------------------------------
   // Mass and momentum of a node, together: a transfer touches all four at once.

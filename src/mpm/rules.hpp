@@ -8,13 +8,13 @@
 #include <string_view>
 #include <vector>
 
-#include "fem/rigid_body.hpp"
+#include "core/rigid_body.hpp"
 #include "mpm/grid.hpp"
 
 namespace snapjump::mpm {
 
 // The container that the rim is glued to (one vertical degree of freedom).
-using RigidBody = fem::RigidBody;
+using RigidBody = core::RigidBody;
 
 struct StepContext {
   double dt = 0.0;

@@ -23,7 +23,7 @@ struct Stencil {
   int off[3][3];
   const std::array<int, 8>* neighbours;
 
-  Stencil(const SparseGrid& grid, const mesh::Points& x, std::size_t i, double dx) {
+  Stencil(const SparseGrid& grid, const core::Points& x, std::size_t i, double dx) {
     const double inv_dx = 1.0 / dx;
     const double xi[3] = {x.x[i], x.y[i], x.z[i]};
     const auto& local = grid.local_of(i);
@@ -62,7 +62,7 @@ TimeStep choose_time_step(double elastic_bound, double dx, double expected_speed
   return t;
 }
 
-Particles Particles::at_rest(const mesh::Points& positions, const std::vector<double>& masses) {
+Particles Particles::at_rest(const core::Points& positions, const std::vector<double>& masses) {
   Particles p;
   const std::size_t n = positions.size();
   p.x = positions;

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh.hpp"
+#include "core/points.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/rules.hpp"
 #include "parallel/threads.hpp"
@@ -19,20 +19,20 @@ namespace snapjump::mpm {
 
 // Material points: structure of arrays.
 struct Particles {
-  mesh::Points x, v;
+  core::Points x, v;
   std::vector<double> mass;
   std::vector<double> C;  // affine velocity, 9 per particle, row-major
   std::vector<std::uint8_t> tags;
   [[nodiscard]] std::size_t size() const { return mass.size(); }
   // Particles at `positions` with `masses`, at rest.
-  static Particles at_rest(const mesh::Points& positions, const std::vector<double>& masses);
+  static Particles at_rest(const core::Points& positions, const std::vector<double>& masses);
 };
 
 // Forces on the particles at positions x and time t (overwrites f).
 class ForceProvider {
  public:
   virtual ~ForceProvider() = default;
-  virtual void forces(const mesh::Points& x, double t, mesh::Points& f) = 0;
+  virtual void forces(const core::Points& x, double t, core::Points& f) = 0;
 };
 
 // The run cannot go on: a non-finite value, a particle faster than the grid allows, an inverted
@@ -113,7 +113,7 @@ class Stepper {
   std::vector<std::unique_ptr<GridRule>> rules_;
   std::vector<RigidBody*> bodies_;
   parallel::ThreadTuner tuner_;
-  mesh::Points f_;
+  core::Points f_;
   double time_ = 0.0;
   long steps_ = 0;
   double max_speed_ = 0.0;

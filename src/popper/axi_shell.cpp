@@ -70,7 +70,7 @@ void AxiShell::start_held(double damping) {
   dynamics_.set_damping(kAxiHeldDampingFactor * damping);
 }
 
-void AxiShell::start_on_plate(fem::RigidBody& container, double mu, double damping) {
+void AxiShell::start_on_plate(core::RigidBody& container, double mu, double damping) {
   // Lower the shell until its lowest point touches the plate.
   const auto& x = dynamics_.positions();
   const double lowest = *std::min_element(x.z.begin(), x.z.end());
@@ -80,7 +80,7 @@ void AxiShell::start_on_plate(fem::RigidBody& container, double mu, double dampi
   glue_to(container, mu, damping, 0.0, 0);
 }
 
-void AxiShell::glue_to(fem::RigidBody& container, double mu, double damping, double time,
+void AxiShell::glue_to(core::RigidBody& container, double mu, double damping, double time,
                        long steps) {
   dynamics_.attach(container, mu, rim_offset_);
   dynamics_.set_gravity(kG);
@@ -111,7 +111,7 @@ void AxiShell::save_state(std::ostream& out) const {
   for (const auto* a : {&x.r, &x.z, &v.r, &v.z}) put_vector(out, *a);
 }
 
-void AxiShell::load_state(std::istream& in, fem::RigidBody& container, double mu) {
+void AxiShell::load_state(std::istream& in, core::RigidBody& container, double mu) {
   char magic[sizeof kAxiMagic] = {};
   in.read(magic, sizeof magic);
   if (!in || std::memcmp(magic, kAxiMagic, sizeof kAxiMagic) != 0) {

@@ -28,7 +28,7 @@ class AxiShell final : public ShellModel {
   [[nodiscard]] double time_step() const override { return dynamics_.dt(); }
 
   void start_held(double damping) override;
-  void start_on_plate(fem::RigidBody& container, double mu, double damping) override;
+  void start_on_plate(core::RigidBody& container, double mu, double damping) override;
   void set_damping(double c) override { dynamics_.set_damping(c); }
   void step() override { dynamics_.step(); }
   [[nodiscard]] double time() const override { return dynamics_.time(); }
@@ -55,7 +55,7 @@ class AxiShell final : public ShellModel {
   [[nodiscard]] Contact contact() const override;
 
   void save_state(std::ostream& out) const override;
-  void load_state(std::istream& in, fem::RigidBody& container, double mu) override;
+  void load_state(std::istream& in, core::RigidBody& container, double mu) override;
   void write_snapshot(const std::filesystem::path& path, double t) const override;
   [[nodiscard]] double outer_rim_radius() const override {
     return body_.nodes().r[static_cast<std::size_t>(body_.outer().back())];
@@ -66,7 +66,7 @@ class AxiShell final : public ShellModel {
 
  private:
   // On the plate, the rim glued to the container at rim_offset_, gravity on, the clock set.
-  void glue_to(fem::RigidBody& container, double mu, double damping, double time, long steps);
+  void glue_to(core::RigidBody& container, double mu, double damping, double time, long steps);
 
   axi::Body body_;
   double omega_max_ = 0.0;  // the undeformed body's highest frequency [rad/s]

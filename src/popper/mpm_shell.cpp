@@ -74,7 +74,7 @@ MpmShell::MpmShell(const config::Case& c, const Numerics& n, std::function<doubl
   }
   hole_area_ = std::numbers::pi * std::pow(rim_r / count, 2);
   depth_outer_ = outer_rim_z(X) - X.z[body_->mesh().apex];
-  forces_ = std::make_unique<mpm::BodyForces>(*body_, kG, [this](double) { return delta_p_(); });
+  forces_ = std::make_unique<hybrid::BodyForces>(*body_, kG, [this](double) { return delta_p_(); });
   // The grid bound assumes speeds up to 2 m/s (a jump of 20 cm); faster particles stop the run
   // with a StepError from the stepper's own CFL check.
   time_step_ = mpm::choose_time_step(body_->stable_time_step(n.time_step_factor), n.dx, 2.0, 0.5);
@@ -137,7 +137,7 @@ void MpmShell::start_held(double damping) {
   stepper_.reset();
 }
 
-void MpmShell::start_on_plate(fem::RigidBody& container, double mu, double damping) {
+void MpmShell::start_on_plate(core::RigidBody& container, double mu, double damping) {
   // Lower the shell until its lowest point is just inside the plate's reach (the plate acts on
   // the nodes at z <= 0, a particle's stencil reaches 1.5 cells).
   auto x = positions();
@@ -145,13 +145,13 @@ void MpmShell::start_on_plate(fem::RigidBody& container, double mu, double dampi
   for (double z : x.z) lowest = std::min(lowest, z);
   const double shift = 1.2 * numerics_.dx - lowest;
   for (auto& z : x.z) z += shift;
-  auto particles = mpm::particles_of(*body_);
+  auto particles = hybrid::particles_of(*body_);
   particles.x = x;
   build_stepper(std::move(particles), container, mu, damping);
   driver_.reset();
 }
 
-void MpmShell::build_stepper(mpm::Particles particles, fem::RigidBody& container, double mu,
+void MpmShell::build_stepper(mpm::Particles particles, core::RigidBody& container, double mu,
                              double damping) {
   stepper_ = std::make_unique<mpm::Stepper>(
       std::move(particles), *forces_,
@@ -227,11 +227,11 @@ void MpmShell::save_state(std::ostream& out) const {
   for (const auto* v : {&p.x.x, &p.x.y, &p.x.z, &p.v.x, &p.v.y, &p.v.z, &p.C}) put_vector(out, *v);
 }
 
-void MpmShell::load_state(std::istream& in, fem::RigidBody& container, double mu) {
+void MpmShell::load_state(std::istream& in, core::RigidBody& container, double mu) {
   double time = 0.0;
   long steps = 0;
   get_clock(in, time, steps);
-  auto particles = mpm::particles_of(*body_);
+  auto particles = hybrid::particles_of(*body_);
   const std::size_t n = particles.size();
   for (auto* v : {&particles.x.x, &particles.x.y, &particles.x.z, &particles.v.x, &particles.v.y,
                   &particles.v.z}) {

@@ -8,7 +8,7 @@
 
 #include "fem/body.hpp"
 #include "fem/explicit.hpp"
-#include "mpm/body_forces.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mpm/rules.hpp"
 #include "mpm/stepper.hpp"
 #include "popper/popper.hpp"
@@ -37,7 +37,7 @@ class MpmShell final : public ShellModel {
   [[nodiscard]] double time_step() const override { return time_step_.dt; }
 
   void start_held(double damping) override;
-  void start_on_plate(fem::RigidBody& container, double mu, double damping) override;
+  void start_on_plate(core::RigidBody& container, double mu, double damping) override;
   void set_damping(double c) override;
   void step() override;
   [[nodiscard]] double time() const override;
@@ -56,7 +56,7 @@ class MpmShell final : public ShellModel {
   [[nodiscard]] Contact contact() const override;
 
   void save_state(std::ostream& out) const override;
-  void load_state(std::istream& in, fem::RigidBody& container, double mu) override;
+  void load_state(std::istream& in, core::RigidBody& container, double mu) override;
   void write_snapshot(const std::filesystem::path& path, double t) const override;
   [[nodiscard]] double outer_rim_radius() const override;
 
@@ -66,12 +66,12 @@ class MpmShell final : public ShellModel {
  private:
   [[nodiscard]] const mesh::Points& positions() const;
   [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
-  void build_stepper(mpm::Particles particles, fem::RigidBody& container, double mu,
+  void build_stepper(mpm::Particles particles, core::RigidBody& container, double mu,
                      double damping);
 
   Numerics numerics_;
   std::unique_ptr<fem::Body> body_;
-  std::unique_ptr<mpm::BodyForces> forces_;
+  std::unique_ptr<hybrid::BodyForces> forces_;
   std::function<double()> delta_p_;
   std::unique_ptr<fem::ExplicitDriver> driver_;  // phases 1-2
   std::unique_ptr<mpm::Stepper> stepper_;        // from the grounding on

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "config/case.hpp"
-#include "fem/rigid_body.hpp"
+#include "core/rigid_body.hpp"
 #include "measure/time_series.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "popper/gas.hpp"
@@ -163,8 +163,8 @@ class Popper {
   [[nodiscard]] long steps() const { return model_->steps(); }
   // The discretisation of the shell.
   [[nodiscard]] const ShellModel& model() const { return *model_; }
-  [[nodiscard]] const fem::RigidBody& container() const { return container_; }
-  [[nodiscard]] const fem::RigidBody& counterweight() const { return counterweight_; }
+  [[nodiscard]] const core::RigidBody& container() const { return container_; }
+  [[nodiscard]] const core::RigidBody& counterweight() const { return counterweight_; }
   [[nodiscard]] const Gas& gas() const { return gas_; }
   [[nodiscard]] const config::Case& input() const { return case_; }
   [[nodiscard]] const Numerics& numerics() const { return numerics_; }
@@ -191,10 +191,10 @@ class Popper {
   // Built before the gas, whose reference volume holds the undeformed cavity.
   std::unique_ptr<ShellModel> model_;
   Gas gas_;
-  fem::RigidBody container_;
+  core::RigidBody container_;
   // With an elastic wire: the counterweight, its z being how far the popper would have risen
   // with a rigid wire (its own fall); unused with a rigid wire.
-  fem::RigidBody counterweight_;
+  core::RigidBody counterweight_;
   double delta_p_j_ = 0.0;
   PreparationSettings settings_;
   bool grounded_ = false;  // on the plate, ready for release()

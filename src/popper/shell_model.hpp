@@ -16,7 +16,7 @@
 #include <string>
 
 #include "config/case.hpp"
-#include "fem/rigid_body.hpp"
+#include "core/rigid_body.hpp"
 
 namespace snapjump::popper {
 
@@ -47,7 +47,7 @@ class ShellModel {
   // Phase 3 on: the shell lowered onto the plate (its lowest point where the plate meets it),
   // its rim glued to the container from now on, the plate acting with Coulomb friction mu,
   // gravity on. The container's z is 0 there.
-  virtual void start_on_plate(fem::RigidBody& container, double mu, double damping) = 0;
+  virtual void start_on_plate(core::RigidBody& container, double mu, double damping) = 0;
   virtual void set_damping(double c) = 0;
   virtual void step() = 0;
   [[nodiscard]] virtual double time() const = 0;
@@ -78,7 +78,7 @@ class ShellModel {
   // continue a stopped run; load_state() is called on a model built from the same case, after
   // which it is on the plate, glued to `container`.
   virtual void save_state(std::ostream& out) const = 0;
-  virtual void load_state(std::istream& in, fem::RigidBody& container, double mu) = 0;
+  virtual void load_state(std::istream& in, core::RigidBody& container, double mu) = 0;
   // A ParaView snapshot of the current state (.vtu) at time t after the release [s].
   virtual void write_snapshot(const std::filesystem::path& path, double t) const = 0;
 };

@@ -111,7 +111,7 @@ TEST(AxiDynamics, ShellAndContainerFallFreely) {
   // Above the plate, with gravity on the shell and the container's weight: z = -g t^2 / 2.
   const auto b = make(2);
   Dynamics d(b, 0.5 * 2.0 / b.highest_frequency());
-  fem::RigidBody c;
+  core::RigidBody c;
   c.mass = 0.2;
   c.applied_force = -c.mass * 9.81;
   d.translate_z(1.0);
@@ -184,7 +184,7 @@ TEST(AxiPlate, PressedCapFollowsTheContactSolverAndReissner) {
   const double nu = 0.45, v0 = 0.05;
   const auto b = make(4, nu);
   Dynamics d(b, 0.3 * 2.0 / b.highest_frequency());
-  fem::RigidBody rim;
+  core::RigidBody rim;
   rim.mass = 1e4;  // moves at v0 whatever the shell pushes
   rim.vz = -v0;
   const double shift = -b.nodes().z[b.apex()];

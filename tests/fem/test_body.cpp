@@ -10,9 +10,9 @@
 #include <string>
 
 #include "fem/body.hpp"
-#include "fem/tet10.hpp"
 #include "io/vtu.hpp"
 #include "mesh/cap_mesher.hpp"
+#include "mesh/tet10.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::fem {
@@ -168,7 +168,7 @@ TEST(Body, AffinePatchTestLeavesInteriorNodesFreeOnStraightElements) {
   auto m = coarse_cap().mesh();
   for (const auto& tet : m.tets) {
     for (int e = 0; e < 6; ++e) {
-      const int mid = tet[4 + e], i = tet[kTetEdges[e][0]], j = tet[kTetEdges[e][1]];
+      const int mid = tet[4 + e], i = tet[mesh::kTetEdges[e][0]], j = tet[mesh::kTetEdges[e][1]];
       m.nodes.x[mid] = 0.5 * (m.nodes.x[i] + m.nodes.x[j]);
       m.nodes.y[mid] = 0.5 * (m.nodes.y[i] + m.nodes.y[j]);
       m.nodes.z[mid] = 0.5 * (m.nodes.z[i] + m.nodes.z[j]);

@@ -11,14 +11,17 @@
 #include <vector>
 
 #include "fem/body.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mesh/solid_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/mpm_test_support.hpp"
 #include "mpm/stepper.hpp"
 
 namespace snapjump::mpm {
+
+using hybrid::BodyForces;
+using hybrid::particles_of;
 namespace {
 
 using testing::NoForces;

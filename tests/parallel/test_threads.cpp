@@ -9,8 +9,8 @@
 
 #include "fem/body.hpp"
 #include "fem/explicit.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/stepper.hpp"
 #include "parallel/threads.hpp"
 
@@ -136,8 +136,8 @@ struct StepState {
 // stage of the MPM step (forces, transfers, clamp, plate) runs, for 150 steps.
 StepState run_steps(const fem::Body& shell, int threads, bool tune) {
   const parallel::ScopedThreadCount count(threads);
-  mpm::BodyForces forces(shell, 9.81, [](double) { return 2000.0; });
-  auto particles = mpm::particles_of(shell);
+  hybrid::BodyForces forces(shell, 9.81, [](double) { return 2000.0; });
+  auto particles = hybrid::particles_of(shell);
   const double zmin = *std::min_element(particles.x.z.begin(), particles.x.z.end());
   for (std::size_t i = 0; i < particles.size(); ++i) {
     particles.x.z[i] += 0.0003 - zmin;

@@ -11,8 +11,8 @@
 #include <numbers>
 
 #include "fem/body.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/rules.hpp"
 #include "mpm/stepper.hpp"
 
@@ -35,11 +35,11 @@ struct ShellOverPlate {
     apex = static_cast<std::size_t>(lowest - m.nodes.z.begin());
     mesh::translate_z(m, gap - *lowest);
     shell = std::make_unique<fem::Body>(m, fem::Material::from_young(E, nu, rho));
-    forces = std::make_unique<mpm::BodyForces>(*shell, 0.0);
+    forces = std::make_unique<hybrid::BodyForces>(*shell, 0.0);
     // Light damping keeps the contact's ringing down; the rim moves slowly against the shell's
     // waves (centimetres per second against about 30 m/s), so the states are quasi-static.
     stepper = std::make_unique<mpm::Stepper>(
-        mpm::particles_of(*shell), *forces,
+        hybrid::particles_of(*shell), *forces,
         mpm::StepperOptions{shell->stable_time_step(0.4), dx, 0.5, 0.05 * std::sqrt(E / rho) / R});
     rim.mass = 1e9;
     stepper->add_rule(std::make_unique<mpm::ClampRule>(rim));
@@ -70,7 +70,7 @@ struct ShellOverPlate {
   double dx;   // grid spacing [m]
   double gap;  // apex height above the plate at the start [m]
   std::unique_ptr<fem::Body> shell;
-  std::unique_ptr<mpm::BodyForces> forces;
+  std::unique_ptr<hybrid::BodyForces> forces;
   std::unique_ptr<mpm::Stepper> stepper;
   mpm::RigidBody rim;
   mpm::PlateRule* plate = nullptr;

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "fem/body.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/solid_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/rules.hpp"
 #include "mpm/stepper.hpp"
 
@@ -57,7 +57,7 @@ Incline block_on_incline(double mu, double tan_alpha, double t_end) {
   const fem::Body block(mesh::make_box_mesh(-a / 2, -a / 2, 0.25 * dx, a, a, a, 0.004),
                         fem::Material::from_young(E, nu, rho));
   TiltedGravity forces(block, std::atan(tan_alpha));
-  mpm::Stepper s(mpm::particles_of(block), forces, {block.stable_time_step(0.3), dx, 0.5});
+  mpm::Stepper s(hybrid::particles_of(block), forces, {block.stable_time_step(0.3), dx, 0.5});
   s.add_rule(std::make_unique<mpm::PlateRule>(mu));
   const auto x0 = s.particles().x;
   const auto mean = [&](const std::vector<double>& v) {

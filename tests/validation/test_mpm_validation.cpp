@@ -8,11 +8,14 @@
 #include <numbers>
 
 #include "fem/body.hpp"
+#include "hybrid/body_forces.hpp"
 #include "mesh/solid_mesher.hpp"
-#include "mpm/body_forces.hpp"
 #include "mpm/stepper.hpp"
 
 namespace snapjump::mpm {
+
+using hybrid::BodyForces;
+using hybrid::particles_of;
 namespace {
 
 constexpr double kG = 9.80665;

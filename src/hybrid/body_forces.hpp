@@ -1,5 +1,5 @@
-// The finite-element body as a force provider for the MPM engine: internal forces, the pressure
-// follower load and gravity, at the particles' current positions.
+// The paper's hybrid: the finite-element body as a force provider for the MPM engine: internal
+// forces, the pressure follower load and gravity, at the particles' current positions.
 #pragma once
 
 #include <functional>
@@ -7,7 +7,10 @@
 #include "fem/body.hpp"
 #include "mpm/stepper.hpp"
 
-namespace snapjump::mpm {
+namespace snapjump::hybrid {
+
+using mpm::ForceProvider;
+using mpm::Particles;
 
 class BodyForces final : public ForceProvider {
  public:
@@ -32,4 +35,4 @@ class BodyForces final : public ForceProvider {
 // kTagClamped.
 Particles particles_of(const fem::Body& body);
 
-}  // namespace snapjump::mpm
+}  // namespace snapjump::hybrid

@@ -2,7 +2,7 @@
 // discretisations of the shell (the MPM grid's clamp and the axisymmetric model's).
 #pragma once
 
-namespace snapjump::fem {
+namespace snapjump::core {
 
 struct RigidBody {
   double mass = 0.0;           // [kg]
@@ -17,4 +17,4 @@ struct RigidBody {
   }
 };
 
-}  // namespace snapjump::fem
+}  // namespace snapjump::core

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <random>
 
-#include "fem/tet10.hpp"
+#include "mesh/tet10.hpp"
 
-namespace snapjump::fem {
+namespace snapjump::mesh {
 namespace {
 
 // Reference coordinates of the tet10 nodes in gmsh's order (corners, then edge midpoints of
@@ -121,4 +121,4 @@ TEST(Quadrature, TriangleRuleIsExactToDegreeFour) {
 }
 
 }  // namespace
-}  // namespace snapjump::fem
+}  // namespace snapjump::mesh

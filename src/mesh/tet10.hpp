@@ -10,7 +10,7 @@
 #include <array>
 #include <span>
 
-namespace snapjump::fem {
+namespace snapjump::mesh {
 
 inline constexpr int kTetNodes = 10;
 inline constexpr int kTriNodes = 6;
@@ -43,4 +43,4 @@ std::span<const QuadraturePoint3> tet_rule_degree5();
 // faces (integrands x . (dx/dr x dx/ds) and N_a (dx/dr x dx/ds) are of degree 4).
 std::span<const QuadraturePoint2> tri_rule_degree4();
 
-}  // namespace snapjump::fem
+}  // namespace snapjump::mesh

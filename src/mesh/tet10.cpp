@@ -1,9 +1,9 @@
-#include "fem/tet10.hpp"
+#include "mesh/tet10.hpp"
 
 #include <cmath>
 #include <vector>
 
-namespace snapjump::fem {
+namespace snapjump::mesh {
 
 std::array<double, kTetNodes> tet10_shape(double r, double s, double t) {
   const std::array<double, 4> L{1.0 - r - s - t, r, s, t};
@@ -110,4 +110,4 @@ std::span<const QuadraturePoint3> tet_rule_degree5() {
 
 std::span<const QuadraturePoint2> tri_rule_degree4() { return kTri4; }
 
-}  // namespace snapjump::fem
+}  // namespace snapjump::mesh
