@@ -418,6 +418,30 @@ std::optional<Model> parse_model(std::string_view text) {
 
 std::string_view to_string(Model m) { return m == Model::Axisymmetric ? "axisymmetric" : "3d"; }
 
+const ResolutionPreset& preset(Resolution r) {
+  static constexpr ResolutionPreset kCoarse{.element_size_over_sqrt_hR = 1.0 / 1.5,
+                                            .layers = 1,
+                                            .grid_cells_per_thickness = 4.0,
+                                            .axi_through = 2};
+  static constexpr ResolutionPreset kDefault{.element_size_over_sqrt_hR = 1.0 / 2.0,
+                                             .layers = 1,
+                                             .grid_cells_per_thickness = 4.0,
+                                             .axi_through = 4};
+  static constexpr ResolutionPreset kFine{.element_size_over_sqrt_hR = 1.0 / 2.5,
+                                          .layers = 2,
+                                          .grid_cells_per_thickness = 8.0,
+                                          .axi_through = 8};
+  switch (r) {
+    case Resolution::Coarse:
+      return kCoarse;
+    case Resolution::Fine:
+      return kFine;
+    case Resolution::Default:
+      break;
+  }
+  return kDefault;
+}
+
 std::optional<BulkIntegration> parse_bulk_integration(std::string_view text) {
   for (const auto b : {BulkIntegration::Full, BulkIntegration::Reduced}) {
     if (text == to_string(b)) return b;

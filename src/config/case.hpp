@@ -91,6 +91,23 @@ std::string_view to_string(BulkIntegration b);
 // "full", "reduced"; nullopt for anything else.
 std::optional<BulkIntegration> parse_bulk_integration(std::string_view text);
 
+// What a resolution preset sets where the case does not: the one table of the presets, read by
+// the cap mesher (element size, layers) and the popper (grid, axisymmetric elements).
+struct ResolutionPreset {
+  // 3D: in-surface element size over the bending length sqrt(h R) (numerics.element_size
+  // overrides it); the default is sized so that the default popper's jump runs in minutes on two
+  // cores, coarse serves sweeps, fine is the convergence check.
+  double element_size_over_sqrt_hR;
+  int layers;  // 3D: quadratic elements through h (numerics.elements_through_thickness)
+  // 3D: the grid spacing is h over this many cells (numerics.grid_spacing); the default stays at
+  // h/4 for the cost of the sparse grid's blocks at finer cells (docs/popper.md).
+  double grid_cells_per_thickness;
+  // Axisymmetric: elements through h (numerics.elements_through_thickness); along the meridian
+  // twice as long as thick, or numerics.element_size long.
+  int axi_through;
+};
+const ResolutionPreset& preset(Resolution r);
+
 struct Numerics {
   Model model = Model::ThreeD;
   // The model's own when absent (3D full, axisymmetric reduced).

@@ -88,28 +88,14 @@ double polar_angle(Vec d) { return std::acos(std::clamp(-d.z, -1.0, 1.0)); }
 }  // namespace
 
 CapSpec cap_spec(const config::Case& c) {
-  // In-plane element size as a fraction of the bending length sqrt(h R), and quadratic elements
-  // through h. The default preset is sized so that the default popper's jump runs in under ten
-  // minutes on two cores; coarse serves sweeps, fine is the convergence check.
-  double fraction = 1.0 / 2.0;
-  int layers = 1;
-  switch (c.numerics.resolution) {
-    case config::Resolution::Coarse:
-      fraction = 1.0 / 1.5;
-      break;
-    case config::Resolution::Default:
-      break;
-    case config::Resolution::Fine:
-      fraction = 1.0 / 2.5;
-      layers = 2;
-      break;
-  }
+  const auto& preset = config::preset(c.numerics.resolution);
   CapSpec s;
   s.R = c.shell.R;
   s.h = c.shell.h;
   s.phi = c.shell.phi;
-  s.element_size = c.numerics.element_size.value_or(fraction * std::sqrt(c.shell.h * c.shell.R));
-  s.layers = c.numerics.elements_through_thickness.value_or(layers);
+  s.element_size = c.numerics.element_size.value_or(preset.element_size_over_sqrt_hR *
+                                                    std::sqrt(c.shell.h * c.shell.R));
+  s.layers = c.numerics.elements_through_thickness.value_or(preset.layers);
   return s;
 }
 

@@ -15,9 +15,8 @@ struct CapSpec {
 };
 
 // The cap of a case at its resolution: numerics.element_size if given, else the preset's
-// fraction of sqrt(h R) (coarse 1/1.5, default 1/2, fine 1/2.5; sqrt(h R) is the scale of the
-// contact zone), and numerics.elements_through_thickness layers (preset: coarse and default 1, fine
-// 2).
+// fraction of sqrt(h R) (the scale of the contact zone), and numerics.elements_through_thickness
+// layers, else the preset's (config::preset, the one table of the presets).
 CapSpec cap_spec(const config::Case& c);
 
 // Meshes the cap with its centre of curvature at the origin and its apex on the negative z axis

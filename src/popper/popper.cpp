@@ -18,29 +18,7 @@ namespace {
 
 constexpr double kG = config::kStandardGravity;
 
-// The value of a resolution preset.
-template <typename T>
-T per_preset(config::Resolution r, T coarse, T preset_default, T fine) {
-  switch (r) {
-    case config::Resolution::Coarse:
-      return coarse;
-    case config::Resolution::Fine:
-      return fine;
-    case config::Resolution::Default:
-      break;
-  }
-  return preset_default;
-}
-
 }  // namespace
-
-double grid_cells_per_thickness(config::Resolution r) {
-  return per_preset(r, kCellsPerThicknessCoarse, kCellsPerThicknessDefault, kCellsPerThicknessFine);
-}
-
-int axi_elements_through(config::Resolution r) {
-  return per_preset(r, kAxiThroughCoarse, kAxiThroughDefault, kAxiThroughFine);
-}
 
 Numerics resolve_numerics(const config::Case& c) {
   Numerics n;
@@ -59,8 +37,8 @@ Numerics resolve_numerics(const config::Case& c) {
   }
   // A designer's mesh is read here, before a run writes anything: a defect is an input error.
   if (!n.mesh_file.empty()) n.user_mesh = std::make_shared<const mesh::Mesh>(load_user_mesh(c));
-  n.axi_through =
-      c.numerics.elements_through_thickness.value_or(axi_elements_through(c.numerics.resolution));
+  n.axi_through = c.numerics.elements_through_thickness.value_or(
+      config::preset(c.numerics.resolution).axi_through);
   n.axi_along =
       c.numerics.element_size
           ? std::max(
@@ -70,8 +48,8 @@ Numerics resolve_numerics(const config::Case& c) {
   // away, and a shell pressed on it stands a fraction of a cell off (docs/validation.md,
   // "Standoff"): the cell is a fraction of the thickness h, which sets the scale of the
   // indentation e* = alpha_e h, never of R. No coarser than the elements either.
-  n.dx =
-      c.numerics.grid_spacing.value_or(c.shell.h / grid_cells_per_thickness(c.numerics.resolution));
+  n.dx = c.numerics.grid_spacing.value_or(
+      c.shell.h / config::preset(c.numerics.resolution).grid_cells_per_thickness);
   n.dx = std::min(n.dx, n.cap.element_size);
   if (c.numerics.end_time) n.end_time = *c.numerics.end_time;
   n.time_step_factor = c.numerics.time_step_factor.value_or(kTimeStepFactor);

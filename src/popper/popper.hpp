@@ -45,19 +45,6 @@ struct Numerics {
 // Also reads and places a designer's mesh (shell.mesh), once: throws mesh::MeshError for a defect
 // and config::CaseError for a mesh with the axisymmetric model.
 Numerics resolve_numerics(const config::Case& c);
-// The presets' grid spacing is h over this many cells (numerics.grid_spacing overrides it). The
-// default stays at h/4 for the cost of the sparse grid's blocks at finer cells (docs/popper.md).
-inline constexpr double kCellsPerThicknessCoarse = 4.0;
-inline constexpr double kCellsPerThicknessDefault = 4.0;
-inline constexpr double kCellsPerThicknessFine = 8.0;
-double grid_cells_per_thickness(config::Resolution r);
-// The axisymmetric model's elements through h per preset (numerics.elements_through_thickness
-// overrides it); along the meridian the elements are twice as long as thick, or
-// numerics.element_size long.
-inline constexpr int kAxiThroughCoarse = 2;
-inline constexpr int kAxiThroughDefault = 4;
-inline constexpr int kAxiThroughFine = 8;
-int axi_elements_through(config::Resolution r);
 
 // What the simulator needs beyond a valid case (nu < 1/2). Throws config::CaseError.
 void check_simulable(const config::Case& c);
