@@ -25,6 +25,7 @@ namespace {
 
 constexpr std::string_view kResolutionKey = "numerics.resolution";
 constexpr std::string_view kModelKey = "numerics.model";
+constexpr std::string_view kBulkKey = "numerics.bulk_integration";
 
 std::string at(const fs::path& file, const toml::source_region& r) {
   return fmt::format("{}:{}", file.string(), r.begin.line);
@@ -37,11 +38,14 @@ std::string known_keys() {
   s += kResolutionKey;
   s += ' ';
   s += kModelKey;
+  s += ' ';
+  s += kBulkKey;
   return s;
 }
 
 void check_key(const fs::path& file, const toml::source_region& r, const std::string& key) {
-  if (key == kResolutionKey || key == kModelKey || config::find_quantity_key(key) != nullptr) {
+  if (key == kResolutionKey || key == kModelKey || key == kBulkKey ||
+      config::find_quantity_key(key) != nullptr) {
     return;
   }
   throw SweepError(fmt::format("{}: unknown case key '{}'; a sweep may set or vary:{}", at(file, r),
@@ -174,7 +178,7 @@ std::string read_text(const fs::path& p) {
 
 config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitParser& parser) {
   std::vector<config::Override> overrides;
-  std::optional<std::string> resolution, model;
+  std::optional<std::string> resolution, model, bulk;
   const auto add = [&](const Setting& s) {
     if (s.key == kModelKey) {
       if (!config::parse_model(s.text)) {
@@ -182,6 +186,12 @@ config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitP
             fmt::format("{}: {} must be \"3d\" or \"axisymmetric\"", s.origin, kModelKey));
       }
       model = s.text;
+    } else if (s.key == kBulkKey) {
+      if (!config::parse_bulk_integration(s.text)) {
+        throw config::CaseError(
+            fmt::format("{}: {} must be \"full\" or \"reduced\"", s.origin, kBulkKey));
+      }
+      bulk = s.text;
     } else if (s.key == kResolutionKey) {
       if (!config::parse_resolution(s.text)) {
         throw config::CaseError(fmt::format("{}: {} must be \"coarse\", \"default\" or \"fine\"",
@@ -198,6 +208,7 @@ config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitP
                      : config::default_case(overrides, &parser);
   if (resolution) c.numerics.resolution = *config::parse_resolution(*resolution);
   if (model) c.numerics.model = *config::parse_model(*model);
+  if (bulk) c.numerics.bulk_integration = *config::parse_bulk_integration(*bulk);
   if (!spec.title.empty()) {
     std::string vals;
     for (const auto& s : run.settings) vals += fmt::format(", {} = {}", s.key, s.text);

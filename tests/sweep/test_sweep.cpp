@@ -121,6 +121,22 @@ numerics.model = ["3d", "axisymmetric"]
   EXPECT_EQ(again.numerics.model, config::Model::Axisymmetric);
 }
 
+TEST(SweepSpec, TheBulkIntegrationCanBeSetOrVaried) {
+  const auto spec = parse_spec(R"(
+[set]
+numerics.model = "axisymmetric"
+[vary]
+numerics.bulk_integration = ["full", "reduced"]
+)",
+                               "/data/s.toml");
+  ASSERT_EQ(spec.runs.size(), 2u);
+  EXPECT_EQ(make_case(spec, spec.runs[0]).numerics.bulk_integration, config::BulkIntegration::Full);
+  EXPECT_EQ(make_case(spec, spec.runs[1]).numerics.bulk_integration,
+            config::BulkIntegration::Reduced);
+  const auto again = config::parse_case(config::to_toml(make_case(spec, spec.runs[0])), "again");
+  EXPECT_EQ(again.numerics.bulk_integration, config::BulkIntegration::Full);
+}
+
 TEST(SweepFolder, ARunKilledFromOutsideResumesFromItsCheckpoint) {
   const auto dir = fs::temp_directory_path() / "snapjump_sweep_killed_run";
   fs::remove_all(dir);
@@ -191,6 +207,12 @@ TEST(SweepSpec, MistakesNameTheKeyAndTheLine) {
               (void)parse_spec("[set]\nnumerics.model = \"2d\"\n[vary]\nfriction.mu = [0]\n",
                                "s.toml");
             }).find("numerics.model must be"),
+            std::string::npos);
+  EXPECT_NE(error_of([] {
+              (void)parse_spec(
+                  "[set]\nnumerics.bulk_integration = \"half\"\n[vary]\nfriction.mu = [0]\n",
+                  "s.toml");
+            }).find("numerics.bulk_integration must be \"full\" or \"reduced\""),
             std::string::npos);
   EXPECT_NE(error_of([] {
               (void)parse_spec("base = \"nowhere.toml\"\n", "/tmp/s.toml");
