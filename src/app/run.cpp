@@ -233,16 +233,328 @@ void record_failure(const fs::path& dir, const std::string& what) {
 
 }  // namespace
 
-int run_simulation(const config::Case& case_in, const RunOptions& options, std::ostream& out,
-                   std::ostream& err) {
-  // A run started by a sweep ends with it (a sweep killed with -9 must not leave runs going on
-  // that its restart would start a second time).
+namespace {
+
+// A run after its folder is set up, in the shape of the experiment: prepare (buckle, set
+// delta_p_j, ground) and release, or resume from a checkpoint; then step to the apex of the
+// flight; then analyse and draw. It owns what those share: the popper, the time series and its
+// file, the snapshots' collection, the checkpoint's loop state and the summary.
+class Run {
+ public:
+  Run(const config::Case& c, const popper::Numerics& numerics, fs::path dir,
+      const RunOptions& options, nlohmann::json& summary, std::ostream& out, std::ostream& err)
+      : c_(c),
+        numerics_(numerics),
+        dir_(std::move(dir)),
+        options_(options),
+        summary_(summary),
+        out_(out),
+        err_(err),
+        start_(Clock::now()),
+        pop_(c, numerics),
+        columns_(popper::sample_columns()),
+        series_(columns_, true),
+        pvd_(dir_ / "run.pvd") {
+    print_numerics(out_, pop_);
+    summary_["numerics"] = pop_.model().numerics_json();
+    summary_["numerics"]["end_time"] = numerics_.end_time;
+  }
+
+  // Phases 1-3 and the release. False when the shell did not stay inverted under delta_p_j (the
+  // summary says so and the run ends there).
+  bool prepare_and_release();
+  // Continues from the folder's checkpoint, with the series as it was there.
+  void resume();
+
+  struct End {
+    std::string status;
+    bool paused = false;
+  };
+  // Steps to the apex of the flight after the snap, the end time, a pause, or a failure (the
+  // status says which; what was written stays).
+  End go_to_the_apex();
+  // A paused run's summary; the run goes on with --resume.
+  int pause();
+  // The analysis, the summary, the files and the figures.
+  int finish(const std::string& status);
+
+ private:
+  [[nodiscard]] double wall() const {
+    return std::chrono::duration<double>(Clock::now() - start_).count();
+  }
+  void snapshot();
+  popper::Sample record();
+  // The preparation's progress line for a phase; stops the run when the user asked.
+  void preparation_progress(const std::string& phase, double t, double fraction);
+
+  const config::Case& c_;
+  const popper::Numerics& numerics_;
+  const fs::path dir_;
+  const RunOptions& options_;
+  nlohmann::json& summary_;
+  std::ostream& out_;
+  std::ostream& err_;
+  const Clock::time_point start_;
+  popper::Popper pop_;
+  std::vector<std::string> columns_;
+  measure::TimeSeries series_;
+  std::optional<measure::CsvWriter> csv_;
+  io::PvdCollection pvd_;
+  LoopState loop_;
+  double last_print_ = -1.0;
+  double last_stop_check_ = 0.0;
+  std::string current_phase_;
+  double phase_start_ = 0.0;
+};
+
+void Run::snapshot() {
+  const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd_.size());
+  pop_.model().write_snapshot(dir_ / name, pop_.time());
+  // The plate and the container (its side, up to a height of the shell's radius) as simple
+  // geometry for ParaView.
+  io::write_apparatus_vtu(dir_ / io::apparatus_file(name), 2.0 * c_.shell.R,
+                          pop_.model().outer_rim_radius(), pop_.model().outer_rim_z(), c_.shell.R);
+  pvd_.add(pop_.time(), name);
+  loop_.frames.emplace_back(pop_.time(), name);
+}
+
+// series.csv has no comment line: ParaView's CSV reader would read the columns as text (the case
+// is in case.toml, the units are SI, t = 0 at the release: docs/analysis.md).
+popper::Sample Run::record() {
+  const auto s = pop_.sample();
+  const auto values = popper::sample_values(s);
+  series_.add_row(values, s.contact);
+  csv_->write_row(values, s.contact);
+  ++loop_.rows;
+  return s;
+}
+
+// Each phase with its share done and, from its pace so far, at most how long it has to go (the
+// buckling and the grounding may end early).
+void Run::preparation_progress(const std::string& phase, double t, double fraction) {
+  if (options_.stop_requested && wall() - last_stop_check_ >= 0.25) {
+    last_stop_check_ = wall();
+    if (options_.stop_requested()) {
+      throw std::runtime_error(fmt::format(
+          "stopped during the preparation ({}, t = {:.4f} s): nothing to resume", phase, t));
+    }
+  }
+  if (phase != current_phase_) {
+    current_phase_ = phase;
+    phase_start_ = wall();
+  }
+  if (options_.quiet || wall() - last_print_ < 2.0) return;
+  last_print_ = wall();
+  std::string share;
+  if (fraction > 0.0) {
+    share = fmt::format(" ({:.0f} %, at most {:.0f} s to go)", 100 * fraction,
+                        (wall() - phase_start_) * (1.0 - fraction) / fraction);
+  }
+  fmt::print(err_, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t, share);
+}
+
+bool Run::prepare_and_release() {
+  const auto prep = pop_.prepare([this](const std::string& phase, double t, double fraction) {
+    preparation_progress(phase, t, fraction);
+  });
+  fmt::print(out_, "  prepared    {}\n", prep.message);
+  summary_["preparation"] = {{"inverted", prep.inverted},
+                             {"held", prep.held},
+                             {"buckling_pressure", prep.buckling_pressure},
+                             {"delta_p_j", pop_.delta_p_j()},
+                             {"plate_force", prep.plate_force},
+                             {"message", prep.message}};
+  if (!prep.held) {
+    summary_["status"] =
+        prep.inverted ? io::run_status::kSnappedBack : io::run_status::kDidNotInvert;
+    write_json_file(dir_ / "summary.json", summary_);
+    fmt::print(out_, "  result      {}\n", summary_["status"].get<std::string>());
+    return false;
+  }
+  write_json_file(dir_ / "summary.json", summary_);
+  pop_.release();
+  csv_.emplace(dir_ / "series.csv", columns_, true);
+  fs::create_directories(dir_ / "snapshots");
+  record();
+  snapshot();
+  loop_.next_sample = numerics_.probe_interval;
+  loop_.next_snapshot = numerics_.snapshot_interval;
+  loop_.next_checkpoint = numerics_.checkpoint_interval;
+  return true;
+}
+
+void Run::resume() {
+  if (std::ifstream prev(dir_ / "summary.json"); prev) {
+    const auto before = nlohmann::json::parse(prev, nullptr, false);
+    if (before.is_object() && before.contains("preparation")) {
+      summary_["preparation"] = before["preparation"];
+    }
+    if (before.is_object() && before.contains("numerics")) {
+      check_same_numerics(before["numerics"], summary_["numerics"], dir_);
+    }
+  }
+  loop_ = read_checkpoint(dir_, pop_);
+  // The series as it was at the checkpoint: rows written after it are dropped.
+  const auto old = measure::TimeSeries::read_csv_file(dir_ / "series.csv");
+  if (old.size() < loop_.rows)
+    throw std::runtime_error("series.csv is shorter than its checkpoint");
+  // The rows that belong to the checkpoint go to a new file, which then replaces the old one in
+  // one rename: a run killed at any moment keeps either series.csv as it was or the new one,
+  // never a series shorter than its checkpoint. The writer goes on appending to the renamed file.
+  const fs::path tmp_series = dir_ / "series.csv.tmp";
+  csv_.emplace(tmp_series, columns_, true);
+  std::vector<double> row(columns_.size());
+  for (std::size_t i = 0; i < loop_.rows; ++i) {
+    for (std::size_t k = 0; k < columns_.size(); ++k) row[k] = old.column(columns_[k])[i];
+    series_.add_row(row, old.contact()[i]);
+    csv_->write_row(row, old.contact()[i]);
+    if (options_.fault_after_rewritten_rows && i + 1 == *options_.fault_after_rewritten_rows) {
+      throw std::runtime_error("injected fault in the middle of the series' rewrite");
+    }
+  }
+  fs::rename(tmp_series, dir_ / "series.csv");
+  const auto frames = loop_.frames;
+  loop_.frames.clear();
+  for (const auto& [t, name] : frames) {
+    pvd_.add(t, name);
+    loop_.frames.emplace_back(t, name);
+  }
+  fmt::print(out_, "  resumed     at t = {:.4f} s, step {}\n", pop_.time(), pop_.steps());
+}
+
+Run::End Run::go_to_the_apex() {
+  End end{std::string(io::run_status::kCompleted)};
+  last_stop_check_ = 0.0;
+  const double run_start = wall();
+  const long start_steps = pop_.steps();
+  // Whether the apex has come down (the snap's onset) in the series so far.
+  loop_.flight.R = c_.shell.R;
+  for (double w : series_.column("w")) loop_.flight.see_apex_gap(w);
+  try {
+    while (pop_.time() < numerics_.end_time) {
+      pop_.step();
+      if (pop_.time() + 1e-12 >= loop_.next_sample) {
+        loop_.next_sample += numerics_.probe_interval;
+        // Stop at the apex of the flight after the snap (popper::FlightWatch).
+        if (loop_.flight.apex_reached(record())) {
+          end.status = io::run_status::kCompletedAtApex;
+          break;
+        }
+      }
+      if (pop_.time() + 1e-12 >= loop_.next_snapshot) {
+        loop_.next_snapshot += numerics_.snapshot_interval;
+        snapshot();
+      }
+      bool pause_now = options_.pause_at && pop_.time() + 1e-12 >= *options_.pause_at;
+      if (options_.stop_requested && wall() - last_stop_check_ >= 0.25) {
+        last_stop_check_ = wall();
+        pause_now = pause_now || options_.stop_requested();
+      }
+      if (pop_.time() + 1e-12 >= loop_.next_checkpoint || pause_now) {
+        loop_.next_checkpoint += numerics_.checkpoint_interval;
+        write_checkpoint(dir_, pop_, loop_);
+      }
+      if (pause_now) {
+        end.paused = true;
+        break;
+      }
+      if (!options_.quiet && wall() - last_print_ >= 5.0) {
+        last_print_ = wall();
+        const double rate = (pop_.steps() - start_steps) / std::max(1e-9, wall() - run_start);
+        const double eta = (numerics_.end_time - pop_.time()) / pop_.dt() / std::max(rate, 1e-9);
+        fmt::print(err_,
+                   "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
+                   "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
+                   wall(), pop_.time(), rate, eta, pop_.gas().delta_p(), 1e3 * pop_.container().z);
+      }
+    }
+  } catch (const std::exception& e) {
+    end.status = io::run_status::failure(e.what());
+    fmt::print(err_, "error: {}\n  what was written so far stays in {}\n", e.what(), dir_.string());
+  }
+  return end;
+}
+
+int Run::pause() {
+  summary_["status"] = fmt::format("paused at t = {:.6g} s; continue with snapjump run --resume {}",
+                                   pop_.time(), dir_.string());
+  write_json_file(dir_ / "summary.json", summary_);
+  fmt::print(out_, "  status      {}\n", summary_["status"].get<std::string>());
+  return kExitOk;
+}
+
+int Run::finish(const std::string& status) {
+  snapshot();
+  summary_["status"] = status;
+  summary_["wall_time"] = wall();
+  summary_["steps"] = pop_.steps();
+  const auto analysis = write_results(dir_, summary_, c_, series_, status, out_);
+  fmt::print(out_, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
+             dir_.string(), pvd_.size());
+  // The figures a reader looks at first: the Fig. 2(a) panels and cross-sections of the shell
+  // before, at and after the transition. A missing gnuplot costs the figures, not the run.
+  try {
+    const auto series_fig = plot::plot_series(dir_, {});
+    std::vector<double> times = {0.0};
+    const double last = pop_.time();
+    if (analysis.t_onset) {
+      for (double t : {*analysis.t_onset - 0.1, *analysis.t_onset - 0.02, *analysis.t_onset}) {
+        if (t > times.back() + 1e-3) times.push_back(t);
+      }
+      if (analysis.t_launch && *analysis.t_launch > times.back() + 1e-3)
+        times.push_back(*analysis.t_launch);
+    } else {
+      for (double f : {0.25, 0.5, 0.75}) times.push_back(f * last);
+    }
+    if (last > times.back() + 1e-3) times.push_back(last);
+    const auto sections_fig = plot::plot_sections(dir_, times, {});
+    fmt::print(out_, "  figures     {}, {}\n", series_fig.figure.string(),
+               sections_fig.figure.string());
+  } catch (const std::exception& e) {
+    fmt::print(out_, "  note        no figures: {}\n", e.what());
+  }
+  return io::run_status::failed(status) ? kExitFailure : kExitOk;
+}
+
+// A run started by a sweep ends with it (a sweep killed with -9 must not leave runs going on that
+// its restart would start a second time).
+void end_with_the_sweep() {
   if (const char* parent = std::getenv("SNAPJUMP_SWEEP_PARENT")) {
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (std::to_string(::getppid()) != parent) {
       throw std::runtime_error("the sweep that started this run has ended");
     }
   }
+}
+
+// The folder as given, and where it really is when links or ".." lead elsewhere.
+std::string describe_folder(const fs::path& dir) {
+  std::string where = dir.string();
+  std::error_code ec;
+  const auto real = fs::canonical(dir, ec);
+  if (!ec && real != fs::absolute(dir).lexically_normal()) {
+    where += fmt::format(" (that is {})", real.string());
+  }
+  return where;
+}
+
+// A new run's folder gets the case (and a designer's mesh, so that a resume or a rerun does not
+// depend on a file that may change or move; case.toml names the copy) and a first summary.
+void write_case(const fs::path& dir, const config::Case& c, const nlohmann::json& summary) {
+  auto written = c;
+  if (!c.shell.mesh.empty()) {
+    fs::copy_file(c.shell.mesh, dir / "shell.msh", fs::copy_options::overwrite_existing);
+    written.shell.mesh = "shell.msh";
+  }
+  io::write_file_atomically(dir / "case.toml", config::to_toml(written));
+  write_json_file(dir / "summary.json", summary);
+}
+
+}  // namespace
+
+int run_simulation(const config::Case& case_in, const RunOptions& options, std::ostream& out,
+                   std::ostream& err) {
+  end_with_the_sweep();
   const bool resuming = !options.resume.empty();
   fs::path dir;
   config::Case c = case_in;
@@ -259,245 +571,20 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   if (!resuming) dir = make_output_folder(c, options.output);
   // One process per run folder: a second resume of the same run is refused.
   const io::FolderLock lock(dir, "run.lock", "the run folder");
-  // The folder as given, and where it really is when links or ".." lead elsewhere.
-  std::string where = dir.string();
-  {
-    std::error_code ec;
-    const auto real = fs::canonical(dir, ec);
-    if (!ec && real != fs::absolute(dir).lexically_normal()) {
-      where += fmt::format(" (that is {})", real.string());
-    }
-  }
   fmt::print(out, "snapjump run: {}\n  output      {}{}\n", c.title.empty() ? c.source : c.title,
-             where, resuming ? " (resumed)" : "");
+             describe_folder(dir), resuming ? " (resumed)" : "");
   nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", io::run_status::kRunning}};
-  if (!resuming) {
-    // A designer's mesh goes into the folder with the case, so that a resume or a rerun does not
-    // depend on a file that may change or move; case.toml names the copy (relative to itself).
-    auto written = c;
-    if (!c.shell.mesh.empty()) {
-      fs::copy_file(c.shell.mesh, dir / "shell.msh", fs::copy_options::overwrite_existing);
-      written.shell.mesh = "shell.msh";
-    }
-    io::write_file_atomically(dir / "case.toml", config::to_toml(written));
-    write_json_file(dir / "summary.json", summary);
-  }
+  if (!resuming) write_case(dir, c, summary);
 
   try {
-    const auto start = Clock::now();
-    const auto wall = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-    popper::Popper pop(c, numerics);
-    print_numerics(out, pop);
-    summary["numerics"] = pop.model().numerics_json();
-    summary["numerics"]["end_time"] = numerics.end_time;
-
-    double last_print = -1.0;
-    const auto columns = popper::sample_columns();
-    measure::TimeSeries series(columns, true);
-    LoopState loop;
-    std::optional<measure::CsvWriter> csv;
-    io::PvdCollection pvd(dir / "run.pvd");
-    const auto snapshot = [&]() {
-      const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd.size());
-      pop.model().write_snapshot(dir / name, pop.time());
-      // The plate and the container (its side, up to a height of the shell's radius) as
-      // simple geometry for ParaView.
-      io::write_apparatus_vtu(dir / io::apparatus_file(name), 2.0 * c.shell.R,
-                              pop.model().outer_rim_radius(), pop.model().outer_rim_z(), c.shell.R);
-      pvd.add(pop.time(), name);
-      loop.frames.emplace_back(pop.time(), name);
-    };
-    const auto record = [&]() {
-      const auto s = pop.sample();
-      const auto values = popper::sample_values(s);
-      series.add_row(values, s.contact);
-      csv->write_row(values, s.contact);
-      ++loop.rows;
-      return s;
-    };
-    // series.csv has no comment line: ParaView's CSV reader would read the columns as text
-    // (the case is in case.toml, the units are SI, t = 0 at the release: docs/analysis.md).
-
+    Run run(c, numerics, dir, options, summary, out, err);
     if (resuming) {
-      if (std::ifstream prev(dir / "summary.json"); prev) {
-        const auto before = nlohmann::json::parse(prev, nullptr, false);
-        if (before.is_object() && before.contains("preparation")) {
-          summary["preparation"] = before["preparation"];
-        }
-        if (before.is_object() && before.contains("numerics")) {
-          check_same_numerics(before["numerics"], summary["numerics"], dir);
-        }
-      }
-      loop = read_checkpoint(dir, pop);
-      // The series as it was at the checkpoint: rows written after it are dropped.
-      const auto old = measure::TimeSeries::read_csv_file(dir / "series.csv");
-      if (old.size() < loop.rows)
-        throw std::runtime_error("series.csv is shorter than its checkpoint");
-      // The rows that belong to the checkpoint go to a new file, which then replaces the old one
-      // in one rename: a run killed at any moment keeps either series.csv as it was or the new
-      // one, never a series shorter than its checkpoint. The writer goes on appending to the
-      // renamed file.
-      const fs::path tmp_series = dir / "series.csv.tmp";
-      csv.emplace(tmp_series, columns, true);
-      std::vector<double> row(columns.size());
-      for (std::size_t i = 0; i < loop.rows; ++i) {
-        for (std::size_t k = 0; k < columns.size(); ++k) row[k] = old.column(columns[k])[i];
-        series.add_row(row, old.contact()[i]);
-        csv->write_row(row, old.contact()[i]);
-        if (options.fault_after_rewritten_rows && i + 1 == *options.fault_after_rewritten_rows) {
-          throw std::runtime_error("injected fault in the middle of the series' rewrite");
-        }
-      }
-      fs::rename(tmp_series, dir / "series.csv");
-      const auto frames = loop.frames;
-      loop.frames.clear();
-      for (const auto& [t, name] : frames) {
-        pvd.add(t, name);
-        loop.frames.emplace_back(t, name);
-      }
-      fmt::print(out, "  resumed     at t = {:.4f} s, step {}\n", pop.time(), pop.steps());
-    } else {
-      // Each phase with its share done and, from its pace so far, at most how long it has to go
-      // (the buckling and the grounding may end early).
-      std::string current_phase;
-      double phase_start = 0.0;
-      double last_stop_check = 0.0;
-      const auto progress = [&](const std::string& phase, double t, double fraction) {
-        if (options.stop_requested && wall() - last_stop_check >= 0.25) {
-          last_stop_check = wall();
-          if (options.stop_requested()) {
-            throw std::runtime_error(fmt::format(
-                "stopped during the preparation ({}, t = {:.4f} s): nothing to resume", phase, t));
-          }
-        }
-        if (phase != current_phase) {
-          current_phase = phase;
-          phase_start = wall();
-        }
-        if (options.quiet || wall() - last_print < 2.0) return;
-        last_print = wall();
-        std::string share;
-        if (fraction > 0.0) {
-          share = fmt::format(" ({:.0f} %, at most {:.0f} s to go)", 100 * fraction,
-                              (wall() - phase_start) * (1.0 - fraction) / fraction);
-        }
-        fmt::print(err, "  [{:>6.1f} s] {:<14} t = {:.4f} s{}\n", wall(), phase, t, share);
-      };
-      const auto prep = pop.prepare(progress);
-      fmt::print(out, "  prepared    {}\n", prep.message);
-      summary["preparation"] = {{"inverted", prep.inverted},
-                                {"held", prep.held},
-                                {"buckling_pressure", prep.buckling_pressure},
-                                {"delta_p_j", pop.delta_p_j()},
-                                {"plate_force", prep.plate_force},
-                                {"message", prep.message}};
-      if (!prep.held) {
-        summary["status"] =
-            prep.inverted ? io::run_status::kSnappedBack : io::run_status::kDidNotInvert;
-        write_json_file(dir / "summary.json", summary);
-        fmt::print(out, "  result      {}\n", summary["status"].get<std::string>());
-        return kExitOk;
-      }
-      write_json_file(dir / "summary.json", summary);
-      pop.release();
-      csv.emplace(dir / "series.csv", columns, true);
-      fs::create_directories(dir / "snapshots");
-      record();
-      snapshot();
-      loop.next_sample = numerics.probe_interval;
-      loop.next_snapshot = numerics.snapshot_interval;
-      loop.next_checkpoint = numerics.checkpoint_interval;
-    }
-
-    std::string status(io::run_status::kCompleted);
-    double last_stop_check = 0.0;
-    const double run_start = wall();
-    const long start_steps = pop.steps();
-    bool paused = false;
-    // Whether the apex has come down (the snap's onset) in the series so far.
-    loop.flight.R = c.shell.R;
-    for (double w : series.column("w")) loop.flight.see_apex_gap(w);
-    try {
-      while (pop.time() < numerics.end_time) {
-        pop.step();
-        if (pop.time() + 1e-12 >= loop.next_sample) {
-          loop.next_sample += numerics.probe_interval;
-          // Stop at the apex of the flight after the snap (popper::FlightWatch).
-          if (loop.flight.apex_reached(record())) {
-            status = io::run_status::kCompletedAtApex;
-            break;
-          }
-        }
-        if (pop.time() + 1e-12 >= loop.next_snapshot) {
-          loop.next_snapshot += numerics.snapshot_interval;
-          snapshot();
-        }
-        bool pause_now = options.pause_at && pop.time() + 1e-12 >= *options.pause_at;
-        if (options.stop_requested && wall() - last_stop_check >= 0.25) {
-          last_stop_check = wall();
-          pause_now = pause_now || options.stop_requested();
-        }
-        if (pop.time() + 1e-12 >= loop.next_checkpoint || pause_now) {
-          loop.next_checkpoint += numerics.checkpoint_interval;
-          write_checkpoint(dir, pop, loop);
-        }
-        if (pause_now) {
-          paused = true;
-          break;
-        }
-        if (!options.quiet && wall() - last_print >= 5.0) {
-          last_print = wall();
-          const double rate = (pop.steps() - start_steps) / std::max(1e-9, wall() - run_start);
-          const double eta = (numerics.end_time - pop.time()) / pop.dt() / std::max(rate, 1e-9);
-          fmt::print(err,
-                     "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
-                     "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
-                     wall(), pop.time(), rate, eta, pop.gas().delta_p(), 1e3 * pop.container().z);
-        }
-      }
-    } catch (const std::exception& e) {
-      status = io::run_status::failure(e.what());
-      fmt::print(err, "error: {}\n  what was written so far stays in {}\n", e.what(), dir.string());
-    }
-    if (paused) {
-      summary["status"] =
-          fmt::format("paused at t = {:.6g} s; continue with snapjump run --resume {}", pop.time(),
-                      dir.string());
-      write_json_file(dir / "summary.json", summary);
-      fmt::print(out, "  status      {}\n", summary["status"].get<std::string>());
+      run.resume();
+    } else if (!run.prepare_and_release()) {
       return kExitOk;
     }
-    snapshot();
-
-    summary["status"] = status;
-    summary["wall_time"] = wall();
-    summary["steps"] = pop.steps();
-    const auto analysis = write_results(dir, summary, c, series, status, out);
-    fmt::print(out, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
-               dir.string(), pvd.size());
-    // The figures a reader looks at first: the Fig. 2(a) panels and cross-sections of the shell
-    // before, at and after the transition. A missing gnuplot costs the figures, not the run.
-    try {
-      const auto series_fig = plot::plot_series(dir, {});
-      std::vector<double> times = {0.0};
-      const double last = pop.time();
-      if (analysis.t_onset) {
-        for (double t : {*analysis.t_onset - 0.1, *analysis.t_onset - 0.02, *analysis.t_onset}) {
-          if (t > times.back() + 1e-3) times.push_back(t);
-        }
-        if (analysis.t_launch && *analysis.t_launch > times.back() + 1e-3)
-          times.push_back(*analysis.t_launch);
-      } else {
-        for (double f : {0.25, 0.5, 0.75}) times.push_back(f * last);
-      }
-      if (last > times.back() + 1e-3) times.push_back(last);
-      const auto sections_fig = plot::plot_sections(dir, times, {});
-      fmt::print(out, "  figures     {}, {}\n", series_fig.figure.string(),
-                 sections_fig.figure.string());
-    } catch (const std::exception& e) {
-      fmt::print(out, "  note        no figures: {}\n", e.what());
-    }
-    return io::run_status::failed(status) ? kExitFailure : kExitOk;
+    const auto end = run.go_to_the_apex();
+    return end.paused ? run.pause() : run.finish(end.status);
   } catch (const ResumeRefused&) {
     throw;  // nothing was changed: the summary keeps its status
   } catch (const std::exception& e) {
