@@ -205,6 +205,15 @@ void check_same_numerics(const nlohmann::json& before, const nlohmann::json& now
                             now.contains(key) ? now[key].dump() : std::string("absent"));
     }
   }
+  // Keys that summaries have carried only since a later version: a run made before had the value
+  // that the model had then.
+  if (!before.contains("bulk_integration") && now.contains("bulk_integration")) {
+    const std::string then = before.value("model", "3d") == "axisymmetric" ? "reduced" : "full";
+    if (now["bulk_integration"] != then) {
+      differ += fmt::format("\n  bulk_integration: \"{}\" when it started, {} now", then,
+                            now["bulk_integration"].dump());
+    }
+  }
   if (!differ.empty()) {
     throw ResumeRefused(fmt::format(
         "--resume {}: this snapjump would continue the run with other numerics than it started "

@@ -96,6 +96,10 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
   weight_.resize(ne * kQp);
   std::vector<double> n2(nn, 0.0);  // integral of N_a^2 over the body
   min_spacing_ = std::numeric_limits<double>::infinity();
+  if (bulk_ == BulkRule::centroid) {
+    centroid_grad_.resize(ne * kGradStride);
+    centroid_weight_.resize(ne);
+  }
   const auto rule = tet_rule_degree2();
   const auto mass_rule = tet_rule_degree5();
   for (std::size_t e = 0; e < ne; ++e) {
@@ -125,7 +129,7 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
       }
       return detJ;
     };
-    double element_weight = 0.0;
+    double element_weight = 0.0;  // the element's quadrature volume
     for (int q = 0; q < kQp; ++q) {
       const auto& p = rule[q];
       const double detJ = reference_gradients(p.r, p.s, p.t, &grad_[(e * kQp + q) * kGradStride]);
@@ -133,9 +137,9 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
       element_weight += p.weight * detJ;
     }
     if (bulk_ == BulkRule::centroid) {
-      centroid_grad_.resize(ne * kGradStride);
-      centroid_weight_.resize(ne);
-      reference_gradients(0.25, 0.25, 0.25, &centroid_grad_[e * kGradStride]);
+      if (!(reference_gradients(0.25, 0.25, 0.25, &centroid_grad_[e * kGradStride]) > 0.0)) {
+        throw mesh::MeshError(fmt::format("element {} is degenerate at its centroid", e));
+      }
       centroid_weight_[e] = element_weight;
     }
     for (const auto& p : mass_rule) {
@@ -368,6 +372,12 @@ double Body::strain_energy(const mesh::Points& x) const {
 std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
   std::vector<double> out(mesh_.tets.size(), 0.0);
   for (std::size_t e = 0; e < mesh_.tets.size(); ++e) {
+    if (bulk_ == BulkRule::centroid) {  // the element's energy as the forces integrate it
+      double W = 0.0;
+      if (!element_pass<true>(static_cast<int>(e), x, &W)) W = 0.0;  // inverted: shown as 0
+      out[e] = W / centroid_weight_[e];
+      continue;
+    }
     const auto& tet = mesh_.tets[e];
     double W = 0.0, V = 0.0;
     for (int q = 0; q < kQp; ++q) {

@@ -4,6 +4,7 @@
 # layer each layer it may not use, which must fail for want of the header.
 #   check_layers.sh CXX BUILD_DIR SOURCE_DIR
 set -u
+export LC_ALL=C  # the compiler's messages in English
 cxx=$1 build=$2 src=$3
 fail=0
 probe=$(mktemp -d)

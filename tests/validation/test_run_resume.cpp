@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -116,6 +117,33 @@ TEST(RunResume, ARunIsNotContinuedWithOtherNumerics) {
   EXPECT_NE(err.str().find("other numerics than it started with"), std::string::npos) << err.str();
   EXPECT_NE(err.str().find("when it started"), std::string::npos) << err.str();
   EXPECT_EQ(read(dir / "summary.json"), summary);  // still paused, not failed
+}
+
+TEST(RunResume, ARunMadeBeforeTheBulkKeyIsNotContinuedWithAnotherRule) {
+  // Summaries before session 10 had no bulk_integration; such a run used its model's rule then
+  // (axisymmetric: reduced). Given "full" in its case.toml, the resume refuses and names it.
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_resume_bulk_test";
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--quiet",
+                 "--end-time", "10ms", "--pause-at", "2ms", "--output", dir.string()}),
+            0);
+  auto summary = nlohmann::json::parse(read(dir / "summary.json"));
+  ASSERT_EQ(summary["numerics"]["bulk_integration"], "reduced");
+  summary["numerics"].erase("bulk_integration");
+  std::ofstream(dir / "summary.json") << summary.dump(2);
+  auto text = read(dir / "case.toml");
+  const auto at = text.find("[numerics]\n");
+  ASSERT_NE(at, std::string::npos) << text;
+  text.insert(at + 11, "bulk_integration = \"full\"\n");
+  std::ofstream(dir / "case.toml") << text;
+  std::vector<std::string> args = {"snapjump", "run", "--resume", dir.string(), "--quiet"};
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
+  EXPECT_NE(err.str().find("bulk_integration: \"reduced\" when it started, \"full\" now"),
+            std::string::npos)
+      << err.str();
 }
 
 }  // namespace
