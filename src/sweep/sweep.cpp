@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -438,6 +439,94 @@ void prepare_folder(const Spec& spec) {
   if (!fs::exists(plan_file)) write_atomic(plan_file, plan);
 }
 
+namespace {
+
+// What one row of sweep.csv is made from, beside the run's name, state and varied settings.
+struct RowSource {
+  const config::Case& c;
+  const theory::Prediction& pred;
+  const nlohmann::json* measured;  // the summary's "measured", or null
+};
+
+// A numeric column of sweep.csv: its header and how a row gets its value. One list makes both
+// the header and the rows, so that they cannot fall out of step.
+struct Column {
+  std::string header;
+  std::function<double(const RowSource&)> value;
+};
+
+std::vector<Column> table_columns() {
+  using R = const RowSource&;
+  std::vector<Column> cols = {
+      {"R [m]", [](R r) { return r.c.shell.R; }},
+      {"h [m]", [](R r) { return r.c.shell.h; }},
+      {"phi [rad]", [](R r) { return r.c.shell.phi; }},
+      {"E [Pa]", [](R r) { return r.c.material.E; }},
+      {"nu [1]", [](R r) { return r.c.material.nu; }},
+      {"rho [kg/m^3]", [](R r) { return r.c.material.rho; }},
+      {"mu [1]", [](R r) { return r.c.friction.mu; }},
+      {"net_weight [N]", [](R r) { return r.pred.net_weight; }},
+      {"moving_mass [kg]", [](R r) { return r.pred.moving_mass; }},
+      {"delta_p_j [Pa]", [](R r) { return r.pred.delta_p_j; }},
+      {"p_c [Pa]", [](R r) { return r.pred.zoelly_pc; }},
+      {"r_c [m]", [](R r) { return r.pred.r_c; }},
+      {"e_c [m]", [](R r) { return r.pred.e_c; }},
+      {"F_c [N]", [](R r) { return r.pred.F_c; }},
+      {"t_c [s]", [](R r) { return r.pred.t_c; }},
+      {"h_over_R [1]", [](R r) { return r.c.shell.h / r.c.shell.R; }},
+      {"Eh2_over_mg [1]",
+       [](R r) { return r.c.material.E * r.c.shell.h * r.c.shell.h / r.pred.net_weight; }},
+      {"Eh4_over_mgR2 [1]",
+       [](R r) {
+         return r.c.material.E * std::pow(r.c.shell.h, 4) /
+                (r.pred.net_weight * r.c.shell.R * r.c.shell.R);
+       }},
+      {"delta_p_j_over_p_c [1]", [](R r) { return r.pred.delta_p_j / r.pred.zoelly_pc; }},
+  };
+  // The measured quantities, then the theory's range of each.
+  struct Quantity {
+    const char* key;
+    const char* unit;
+    const theory::Range& (*range)(const theory::Prediction&);
+  };
+  static constexpr Quantity kQuantities[] = {
+      {"r_star", "m", [](const theory::Prediction& p) -> const theory::Range& { return p.r_star; }},
+      {"e_star", "m", [](const theory::Prediction& p) -> const theory::Range& { return p.e_star; }},
+      {"F_star", "N", [](const theory::Prediction& p) -> const theory::Range& { return p.F_star; }},
+      {"t_star", "s", [](const theory::Prediction& p) -> const theory::Range& { return p.t_star; }},
+      {"H_l", "m", [](const theory::Prediction& p) -> const theory::Range& { return p.H_l; }},
+      {"H_s", "m", [](const theory::Prediction& p) -> const theory::Range& { return p.H_s; }},
+      {"H", "m", [](const theory::Prediction& p) -> const theory::Range& { return p.H; }},
+      {"alpha_r", "1",
+       [](const theory::Prediction& p) -> const theory::Range& { return p.alpha.alpha_r; }},
+      {"alpha_e", "1",
+       [](const theory::Prediction& p) -> const theory::Range& { return p.alpha.alpha_e; }},
+      {"alpha_F", "1",
+       [](const theory::Prediction& p) -> const theory::Range& { return p.alpha.alpha_F; }},
+      {"alpha_t", "1",
+       [](const theory::Prediction& p) -> const theory::Range& { return p.alpha.alpha_t; }},
+  };
+  for (const auto& q : kQuantities) {
+    cols.push_back({fmt::format("{} [{}]", q.key, q.unit), [key = q.key](R r) {
+                      if (r.measured && r.measured->contains("quantities") &&
+                          (*r.measured)["quantities"].contains(key)) {
+                        const auto& j = (*r.measured)["quantities"][key]["value"];
+                        if (j.is_number()) return j.get<double>();
+                      }
+                      return static_cast<double>(NAN);
+                    }});
+  }
+  for (const auto& q : kQuantities) {
+    cols.push_back({fmt::format("{}_lo [{}]", q.key, q.unit),
+                    [range = q.range](R r) { return range(r.pred).lo; }});
+    cols.push_back({fmt::format("{}_hi [{}]", q.key, q.unit),
+                    [range = q.range](R r) { return range(r.pred).hi; }});
+  }
+  return cols;
+}
+
+}  // namespace
+
 int write_table(const Spec& spec, const fs::path& csv) {
   const units::UnitParser parser;
   const auto& constants = theory::contact_constants();
@@ -449,44 +538,8 @@ int write_table(const Spec& spec, const fs::path& csv) {
     const std::string unit = ks ? std::string(units::si_unit(ks->dimension)) : "";
     header.push_back(ks ? fmt::format("{} [{}]", k, unit.empty() ? "1" : unit) : k);
   }
-  const std::vector<std::string> fixed_cols = {"R [m]",
-                                               "h [m]",
-                                               "phi [rad]",
-                                               "E [Pa]",
-                                               "nu [1]",
-                                               "rho [kg/m^3]",
-                                               "mu [1]",
-                                               "net_weight [N]",
-                                               "moving_mass [kg]",
-                                               "delta_p_j [Pa]",
-                                               "p_c [Pa]",
-                                               "r_c [m]",
-                                               "e_c [m]",
-                                               "F_c [N]",
-                                               "t_c [s]",
-                                               "h_over_R [1]",
-                                               "Eh2_over_mg [1]",
-                                               "Eh4_over_mgR2 [1]",
-                                               "delta_p_j_over_p_c [1]"};
-  struct Measured {
-    const char* key;
-    const char* unit;
-  };
-  const Measured measured[] = {{"r_star", "m"},  {"e_star", "m"},  {"F_star", "N"},
-                               {"t_star", "s"},  {"H_l", "m"},     {"H_s", "m"},
-                               {"H", "m"},       {"alpha_r", "1"}, {"alpha_e", "1"},
-                               {"alpha_F", "1"}, {"alpha_t", "1"}};
-  for (const auto& c : fixed_cols) header.push_back(c);
-  for (const auto& m : measured) header.push_back(fmt::format("{} [{}]", m.key, m.unit));
-  for (const auto& m : measured) {
-    if (std::string_view(m.key) == "alpha_r") break;
-    header.push_back(fmt::format("{}_lo [{}]", m.key, m.unit));
-    header.push_back(fmt::format("{}_hi [{}]", m.key, m.unit));
-  }
-  for (const char* a : {"alpha_r", "alpha_e", "alpha_F", "alpha_t"}) {
-    header.push_back(fmt::format("{}_lo [1]", a));
-    header.push_back(fmt::format("{}_hi [1]", a));
-  }
+  const auto columns = table_columns();
+  for (const auto& col : columns) header.push_back(col.header);
   header.push_back("wall_time [s]");
   header.push_back("error");
 
@@ -516,28 +569,8 @@ int write_table(const Spec& spec, const fs::path& csv) {
       const auto& s = r.settings[k];
       row.push_back(varied[k] ? num(parser.parse(s.text, varied[k]->dimension)) : s.text);
     }
-    const double mg = pred.net_weight;
-    const double E = c.material.E, h = c.shell.h, R = c.shell.R;
-    for (double v :
-         {R, h, c.shell.phi, E, c.material.nu, c.material.rho, c.friction.mu, mg, pred.moving_mass,
-          pred.delta_p_j, pred.zoelly_pc, pred.r_c, pred.e_c, pred.F_c, pred.t_c, h / R,
-          E * h * h / mg, E * std::pow(h, 4) / (mg * R * R), pred.delta_p_j / pred.zoelly_pc}) {
-      row.push_back(num(v));
-    }
-    for (const auto& q : measured) {
-      double v = NAN;
-      if (m && m->contains("quantities") && (*m)["quantities"].contains(q.key)) {
-        const auto& j = (*m)["quantities"][q.key]["value"];
-        if (j.is_number()) v = j.get<double>();
-      }
-      row.push_back(num(v));
-    }
-    for (const auto* range :
-         {&pred.r_star, &pred.e_star, &pred.F_star, &pred.t_star, &pred.H_l, &pred.H_s, &pred.H,
-          &pred.alpha.alpha_r, &pred.alpha.alpha_e, &pred.alpha.alpha_F, &pred.alpha.alpha_t}) {
-      row.push_back(num(range->lo));
-      row.push_back(num(range->hi));
-    }
+    const RowSource source{c, pred, m};
+    for (const auto& col : columns) row.push_back(num(col.value(source)));
     double wall = NAN;
     if (summary && (*summary)["wall_time"].is_number())
       wall = (*summary)["wall_time"].get<double>();
