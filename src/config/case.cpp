@@ -20,47 +20,61 @@ constexpr double kDeg = std::numbers::pi / 180.0;
 
 constexpr KeySpec kKeys[] = {
     {"shell", "R", "R", Dimension::Length, true, std::nullopt, "", "30 mm",
-     "mid-surface radius of curvature"},
-    {"shell", "h", "h", Dimension::Length, true, std::nullopt, "", "2 mm", "shell thickness"},
+     "mid-surface radius of curvature", +[](Case& c) { return &c.shell.R; }},
+    {"shell", "h", "h", Dimension::Length, true, std::nullopt, "", "2 mm", "shell thickness",
+     +[](Case& c) { return &c.shell.h; }},
     {"shell", "phi", "phi", Dimension::Angle, false, 80.0 * kDeg, "80 deg", "80 deg",
-     "polar angle of the rim, measured from the apex"},
+     "polar angle of the rim, measured from the apex", +[](Case& c) { return &c.shell.phi; }},
     {"material", "E", "E", Dimension::Pressure, true, std::nullopt, "", "1.2 MPa",
-     "Young's modulus"},
+     "Young's modulus", +[](Case& c) { return &c.material.E; }},
     {"material", "nu", "nu", Dimension::Dimensionless, false, 0.45, "0.45", "0.45",
-     "Poisson's ratio"},
+     "Poisson's ratio", +[](Case& c) { return &c.material.nu; }},
     {"material", "rho", "rho", Dimension::Density, false, 1160.0, "1160 kg/m^3", "1160 kg/m^3",
-     "density"},
+     "density", +[](Case& c) { return &c.material.rho; }},
     {"popper", "net_weight", "net-weight", Dimension::Force, true, std::nullopt, "", "0.48 N",
-     "net weight mg: the popper's weight less the counterweight's"},
+     "net weight mg: the popper's weight less the counterweight's",
+     +[](Case& c) { return &c.popper.net_weight; }},
     {"popper", "mass", "popper-mass", Dimension::Mass, false, 0.300,
      "300 g (net_weight / g when heavier: no counterweight)", "300 g",
-     "the popper's own mass: shell + container + the rail's shafts (an estimate, docs/popper.md)"},
+     "the popper's own mass: shell + container + the rail's shafts (an estimate, docs/popper.md)",
+     +[](Case& c) { return &c.popper.mass; }},
     {"popper", "wire_stiffness", "wire-stiffness", Dimension::Stiffness, false, std::nullopt, "",
-     "3 kN/m", "axial stiffness of the wire to the counterweight (a rigid wire when absent)"},
+     "3 kN/m", "axial stiffness of the wire to the counterweight (a rigid wire when absent)",
+     nullptr, +[](Case& c) { return &c.popper.wire_stiffness; }},
     {"friction", "mu", "mu", Dimension::Dimensionless, false, 0.3, "0.3", "0.3",
-     "Coulomb friction coefficient between shell and plate"},
+     "Coulomb friction coefficient between shell and plate",
+     +[](Case& c) { return &c.friction.mu; }},
     {"gas", "container_volume", "container-volume", Dimension::Volume, false, 200e-6, "200 mL",
-     "200 mL", "volume of the rigid container above the rim plane"},
+     "200 mL", "volume of the rigid container above the rim plane",
+     +[](Case& c) { return &c.gas.container_volume; }},
     {"gas", "p0", "p0", Dimension::Pressure, false, 101325.0, "101325 Pa", "101325 Pa",
-     "atmospheric pressure"},
+     "atmospheric pressure", +[](Case& c) { return &c.gas.p0; }},
     {"gas", "alpha_n", "alpha-n", Dimension::ValveAcceleration, false, 1.0e-3, "1.0e-3 Pa^-1 s^-2",
-     "1.0e-3 Pa^-1 s^-2", "valve law: d2Jn/dt2 = -alpha_n delta_p"},
+     "1.0e-3 Pa^-1 s^-2", "valve law: d2Jn/dt2 = -alpha_n delta_p",
+     +[](Case& c) { return &c.gas.alpha_n; }},
     {"gas", "beta_n", "beta-n", Dimension::ValveRate, false, 5.0e-5, "5.0e-5 Pa^-1 s^-1",
-     "5.0e-5 Pa^-1 s^-1", "valve law: dJn/dt(0) = -beta_n delta_p(0)"},
+     "5.0e-5 Pa^-1 s^-1", "valve law: dJn/dt(0) = -beta_n delta_p(0)",
+     +[](Case& c) { return &c.gas.beta_n; }},
     {"protocol", "delta_p_j", "delta-p-j", Dimension::Pressure, false, std::nullopt, "", "3 kPa",
-     "pressure difference (outside - inside) at release"},
+     "pressure difference (outside - inside) at release", nullptr,
+     +[](Case& c) { return &c.protocol.delta_p_j; }},
     {"protocol", "delta_p_j_over_pc", "delta-p-j-over-pc", Dimension::Dimensionless, false, 0.5,
-     "0.5", "0.5", "delta_p_j as a fraction of Zoelly's p_c (when delta_p_j is not given)"},
+     "0.5", "0.5", "delta_p_j as a fraction of Zoelly's p_c (when delta_p_j is not given)",
+     +[](Case& c) { return &c.protocol.delta_p_j_over_pc; }},
     {"numerics", "grid_spacing", "grid-spacing", Dimension::Length, false, std::nullopt, "",
-     "0.25 mm", "MPM grid spacing (from the resolution preset when absent: h/4, h/4, h/8)"},
+     "0.25 mm", "MPM grid spacing (from the resolution preset when absent: h/4, h/4, h/8)", nullptr,
+     +[](Case& c) { return &c.numerics.grid_spacing; }},
     {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "", "1 mm",
-     "target mesh element size (from the resolution preset when absent)"},
+     "target mesh element size (from the resolution preset when absent)", nullptr,
+     +[](Case& c) { return &c.numerics.element_size; }},
     {"numerics", "time_step_factor", "time-step-factor", Dimension::Dimensionless, false,
      std::nullopt, "", "0.5",
      "3D elastic time step factor: dt = factor * smallest node spacing / p-wave speed (0.5 when "
-     "absent; build/cfl_scan coarse mpm finds 0.6 stable and 0.7 not)"},
+     "absent; build/cfl_scan coarse mpm finds 0.6 stable and 0.7 not)",
+     nullptr, +[](Case& c) { return &c.numerics.time_step_factor; }},
     {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "", "0.5 s",
-     "simulated time after release (until the apex of the flight when absent)"},
+     "simulated time after release (until the apex of the flight when absent)", nullptr,
+     +[](Case& c) { return &c.numerics.end_time; }},
 };
 
 // Keys that are not scalar quantities.
@@ -292,45 +306,29 @@ void check(bool ok, const std::string& message) {
 }
 
 Case build(const Reader& r, Case c) {
-  const auto get = [&](std::string_view t, std::string_view n) { return r.value(spec(t, n), c); };
   const auto positive = [&](std::string_view t, std::string_view n, double v) {
     check(v > 0.0, fmt::format("{} must be positive", r.where(spec(t, n))));
   };
 
-  c.shell.R = *get("shell", "R");
-  c.shell.h = *get("shell", "h");
-  c.shell.phi = *get("shell", "phi");
-  c.material.E = *get("material", "E");
-  c.material.nu = *get("material", "nu");
-  c.material.rho = *get("material", "rho");
-  c.popper.net_weight = *get("popper", "net_weight");
-  c.popper.mass = *get("popper", "mass");
-  if (r.find(spec("popper", "mass")) == nullptr) {
-    // A popper heavier than the default is loaded with weights and needs no counterweight.
-    c.popper.mass = std::max(c.popper.mass, c.popper.net_weight / kStandardGravity);
-  }
-  if (const auto* k = r.find(spec("popper", "wire_stiffness"))) c.popper.wire_stiffness = k->si;
-  c.friction.mu = *get("friction", "mu");
-  c.gas.container_volume = *get("gas", "container_volume");
-  c.gas.p0 = *get("gas", "p0");
-  c.gas.alpha_n = *get("gas", "alpha_n");
-  c.gas.beta_n = *get("gas", "beta_n");
   const auto* dpj = r.find(spec("protocol", "delta_p_j"));
   const auto* dpj_ratio = r.find(spec("protocol", "delta_p_j_over_pc"));
   if (dpj != nullptr && dpj_ratio != nullptr) {
     throw CaseError(fmt::format(
         "{}: give protocol.delta_p_j or protocol.delta_p_j_over_pc, not both", dpj->origin));
   }
-  if (dpj != nullptr) {
-    c.protocol.delta_p_j = dpj->si;
-  } else {
-    c.protocol.delta_p_j_over_pc = *get("protocol", "delta_p_j_over_pc");
+  // Every quantity into its field, in the table's order (the order of the defaults' list).
+  for (const auto& k : kKeys) {
+    if (k.optional_field != nullptr) {
+      if (const auto* e = r.find(k)) *k.optional_field(c) = e->si;
+    } else if (&k == &spec("protocol", "delta_p_j_over_pc") && dpj != nullptr) {
+      continue;  // delta_p_j given absolutely: the fraction is not used (nor a default)
+    } else {
+      *k.field(c) = *r.value(k, c);
+    }
   }
-  if (const auto* e = r.find(spec("numerics", "element_size"))) c.numerics.element_size = e->si;
-  if (const auto* e = r.find(spec("numerics", "grid_spacing"))) c.numerics.grid_spacing = e->si;
-  if (const auto* e = r.find(spec("numerics", "end_time"))) c.numerics.end_time = e->si;
-  if (const auto* e = r.find(spec("numerics", "time_step_factor"))) {
-    c.numerics.time_step_factor = e->si;
+  if (r.find(spec("popper", "mass")) == nullptr) {
+    // A popper heavier than the default is loaded with weights and needs no counterweight.
+    c.popper.mass = std::max(c.popper.mass, c.popper.net_weight / kStandardGravity);
   }
 
   // Physical admissibility, each message naming the key.
@@ -461,47 +459,33 @@ std::string to_toml(const Case& c) {
   // Written by toml++'s serializer, never by string formatting, so that any title or file name
   // (quotes, newlines, control characters) reads back as it was. Numbers are doubles, which the
   // serializer writes in their shortest form that reads back to the same value.
-  toml::table shell{{"R", c.shell.R}, {"h", c.shell.h}, {"phi", c.shell.phi}};
-  if (!c.shell.mesh.empty()) shell.insert("mesh", c.shell.mesh);
-  toml::table material{{"E", c.material.E}, {"nu", c.material.nu}, {"rho", c.material.rho}};
-  toml::table popper{{"net_weight", c.popper.net_weight}, {"mass", c.popper.mass}};
-  if (c.popper.wire_stiffness) popper.insert("wire_stiffness", *c.popper.wire_stiffness);
-  toml::table friction{{"mu", c.friction.mu}};
-  toml::table gas{{"container_volume", c.gas.container_volume},
-                  {"p0", c.gas.p0},
-                  {"alpha_n", c.gas.alpha_n},
-                  {"beta_n", c.gas.beta_n}};
-  toml::table protocol;
-  if (c.protocol.delta_p_j) {
-    protocol.insert("delta_p_j", *c.protocol.delta_p_j);
-  } else {
-    protocol.insert("delta_p_j_over_pc", c.protocol.delta_p_j_over_pc);
+  // Every quantity from its field (a value given absolutely replaces its fraction).
+  std::map<std::string_view, toml::table> tables;
+  Case fields = c;  // the accessors take a Case they could change: read them on a copy
+  for (const auto& k : kKeys) {
+    auto& t = tables[k.table];
+    if (k.optional_field != nullptr) {
+      if (const auto& v = *k.optional_field(fields)) t.insert(k.name, *v);
+    } else if (!(k.table == "protocol" && k.name == "delta_p_j_over_pc" && c.protocol.delta_p_j)) {
+      t.insert(k.name, *k.field(fields));
+    }
   }
-  toml::table numerics{{"resolution", std::string(to_string(c.numerics.resolution))}};
+  auto& shell = tables["shell"];
+  if (!c.shell.mesh.empty()) shell.insert("mesh", c.shell.mesh);
+  auto& numerics = tables["numerics"];
+  numerics.insert("resolution", std::string(to_string(c.numerics.resolution)));
   if (c.numerics.model != Model::ThreeD) {
     numerics.insert("model", std::string(to_string(c.numerics.model)));
   }
   if (c.numerics.bulk_integration) {
     numerics.insert("bulk_integration", std::string(to_string(*c.numerics.bulk_integration)));
   }
-  if (c.numerics.element_size) numerics.insert("element_size", *c.numerics.element_size);
-  if (c.numerics.grid_spacing) numerics.insert("grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.elements_through_thickness) {
     numerics.insert("elements_through_thickness",
                     static_cast<std::int64_t>(*c.numerics.elements_through_thickness));
   }
-  if (c.numerics.end_time) numerics.insert("end_time", *c.numerics.end_time);
-  if (c.numerics.time_step_factor) {
-    numerics.insert("time_step_factor", *c.numerics.time_step_factor);
-  }
-  toml::table doc{{"title", c.title},
-                  {"shell", std::move(shell)},
-                  {"material", std::move(material)},
-                  {"popper", std::move(popper)},
-                  {"friction", std::move(friction)},
-                  {"gas", std::move(gas)},
-                  {"protocol", std::move(protocol)},
-                  {"numerics", std::move(numerics)}};
+  toml::table doc{{"title", c.title}};
+  for (auto& [name, table] : tables) doc.insert(name, std::move(table));
   // No literal or multi-line strings: every string in double quotes, escaped, on one line.
   constexpr auto flags = toml::format_flags::none;
   std::ostringstream out;

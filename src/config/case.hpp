@@ -164,6 +164,10 @@ struct KeySpec {
   std::string_view default_text;     // how the default is shown ("0.45", "80 deg")
   std::string_view example;          // a typical value with its unit ("2 mm")
   std::string_view help;
+  // Where the value lives in a Case: a field that always holds one, or one that holds a value only
+  // when the case gives it. Exactly one is set; the reader and to_toml() go through them.
+  double* (*field)(Case&) = nullptr;
+  std::optional<double>* (*optional_field)(Case&) = nullptr;
 };
 
 // All scalar keys of the case format, in the order of the documentation.
