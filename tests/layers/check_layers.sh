@@ -32,5 +32,18 @@ for view in "$build"/layers/*/; do
   done
 done
 [ "$checked" -gt 50 ] || { echo "only $checked forbidden includes checked: are the views built?"; fail=1; }
+# And every library source is compiled against its layer's view, never against the whole src/.
+if [ -f "$build/compile_commands.json" ]; then
+  bad=$(awk -v src="$src/src" '
+    /"command":/ { cmd = $0 }
+    /"file":/ {
+      if (index($0, "\"" src "/") > 0 && (index(cmd, "-I" src " ") > 0 || index(cmd, "-I" src "\"") > 0)) print $0
+    }' "$build/compile_commands.json")
+  if [ -n "$bad" ]; then
+    echo "compiled against the whole src/ instead of a layer's view:"; echo "$bad"; fail=1
+  fi
+  views=$(grep -c -- "-I[^ ]*/layers/" "$build/compile_commands.json")
+  [ "$views" -gt 20 ] || { echo "only $views compile lines use a layer's view"; fail=1; }
+fi
 echo "$checked forbidden includes refused"
 exit $fail
