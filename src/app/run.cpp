@@ -195,23 +195,20 @@ class ResumeRefused : public config::CaseError {
 // A run continues only with the numerics it started with: a snapjump whose defaults have changed
 // since (a new time step factor, say) would go on with another time step or grid, silently. The
 // end time may differ (it is not part of the discretisation).
-void check_same_numerics(const nlohmann::json& before, const nlohmann::json& now,
+void check_same_numerics(const nlohmann::json& before_in, const nlohmann::json& now,
                          const fs::path& dir) {
+  // Keys that summaries have carried only since a later version: a run made before had the value
+  // its model had then.
+  nlohmann::json before = before_in;
+  if (!before.contains("bulk_integration")) {
+    before["bulk_integration"] = before.value("model", "3d") == "axisymmetric" ? "reduced" : "full";
+  }
   std::string differ;
   for (const auto& [key, value] : before.items()) {
     if (key == "end_time") continue;
     if (!now.contains(key) || now[key] != value) {
       differ += fmt::format("\n  {}: {} when it started, {} now", key, value.dump(),
                             now.contains(key) ? now[key].dump() : std::string("absent"));
-    }
-  }
-  // Keys that summaries have carried only since a later version: a run made before had the value
-  // that the model had then.
-  if (!before.contains("bulk_integration") && now.contains("bulk_integration")) {
-    const std::string then = before.value("model", "3d") == "axisymmetric" ? "reduced" : "full";
-    if (now["bulk_integration"] != then) {
-      differ += fmt::format("\n  bulk_integration: \"{}\" when it started, {} now", then,
-                            now["bulk_integration"].dump());
     }
   }
   if (!differ.empty()) {

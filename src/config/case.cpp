@@ -212,31 +212,36 @@ class Reader {
   }
 
  private:
+  // A string key's value as parse reads it; anything else (not a string, an unknown word) fails
+  // with the message.
+  template <typename Parse>
+  auto parsed_string(const toml::node& node, const toml::key& key, Parse parse,
+                     const char* message) const {
+    const auto* s = node.as_string();
+    const auto v = parse(s ? std::string_view(s->get()) : std::string_view());
+    if (!v) fail(key.source(), message);
+    return *v;
+  }
+
   void read_table(std::string_view table_name, const toml::table& table, Case& c) {
     for (auto&& [key, node] : table) {
       const auto name = key.str();
       const auto origin = at(source_, key.source());
       if (table_name == "numerics" && name == kResolutionKey) {
-        const auto* s = node.as_string();
-        const std::string v = s ? s->get() : "";
-        const auto r = parse_resolution(v);
-        if (!r)
-          fail(key.source(), "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
-        c.numerics.resolution = *r;
+        c.numerics.resolution =
+            parsed_string(node, key, parse_resolution,
+                          "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
         continue;
       }
       if (table_name == "numerics" && name == kModelKey) {
-        const auto* s = node.as_string();
-        const auto m = parse_model(s ? std::string_view(s->get()) : std::string_view());
-        if (!m) fail(key.source(), "numerics.model must be \"3d\" or \"axisymmetric\"");
-        c.numerics.model = *m;
+        c.numerics.model = parsed_string(node, key, parse_model,
+                                         "numerics.model must be \"3d\" or \"axisymmetric\"");
         continue;
       }
       if (table_name == "numerics" && name == kBulkKey) {
-        const auto* s = node.as_string();
-        const auto b = parse_bulk_integration(s ? std::string_view(s->get()) : std::string_view());
-        if (!b) fail(key.source(), "numerics.bulk_integration must be \"full\" or \"reduced\"");
-        c.numerics.bulk_integration = *b;
+        c.numerics.bulk_integration =
+            parsed_string(node, key, parse_bulk_integration,
+                          "numerics.bulk_integration must be \"full\" or \"reduced\"");
         continue;
       }
       if (table_name == "shell" && name == kMeshKey) {
@@ -305,6 +310,12 @@ void check(bool ok, const std::string& message) {
   if (!ok) throw CaseError(message);
 }
 
+// protocol.delta_p_j given absolutely replaces its fraction of p_c: the fraction is then neither
+// read (nor defaulted) nor written.
+bool replaced_by_absolute_value(const KeySpec& k, const Case& c) {
+  return k.table == "protocol" && k.name == "delta_p_j_over_pc" && c.protocol.delta_p_j;
+}
+
 Case build(const Reader& r, Case c) {
   const auto positive = [&](std::string_view t, std::string_view n, double v) {
     check(v > 0.0, fmt::format("{} must be positive", r.where(spec(t, n))));
@@ -316,13 +327,12 @@ Case build(const Reader& r, Case c) {
     throw CaseError(fmt::format(
         "{}: give protocol.delta_p_j or protocol.delta_p_j_over_pc, not both", dpj->origin));
   }
-  // Every quantity into its field, in the table's order (the order of the defaults' list).
+  // Every quantity into its field, in the table's order (the order of the defaults' list;
+  // protocol.delta_p_j comes before its fraction).
   for (const auto& k : kKeys) {
     if (k.optional_field != nullptr) {
       if (const auto* e = r.find(k)) *k.optional_field(c) = e->si;
-    } else if (&k == &spec("protocol", "delta_p_j_over_pc") && dpj != nullptr) {
-      continue;  // delta_p_j given absolutely: the fraction is not used (nor a default)
-    } else {
+    } else if (!replaced_by_absolute_value(k, c)) {
       *k.field(c) = *r.value(k, c);
     }
   }
@@ -459,14 +469,14 @@ std::string to_toml(const Case& c) {
   // Written by toml++'s serializer, never by string formatting, so that any title or file name
   // (quotes, newlines, control characters) reads back as it was. Numbers are doubles, which the
   // serializer writes in their shortest form that reads back to the same value.
-  // Every quantity from its field (a value given absolutely replaces its fraction).
+  // Every quantity from its field.
   std::map<std::string_view, toml::table> tables;
   Case fields = c;  // the accessors take a Case they could change: read them on a copy
   for (const auto& k : kKeys) {
     auto& t = tables[k.table];
     if (k.optional_field != nullptr) {
       if (const auto& v = *k.optional_field(fields)) t.insert(k.name, *v);
-    } else if (!(k.table == "protocol" && k.name == "delta_p_j_over_pc" && c.protocol.delta_p_j)) {
+    } else if (!replaced_by_absolute_value(k, c)) {
       t.insert(k.name, *k.field(fields));
     }
   }

@@ -227,6 +227,16 @@ void throw_if_inverted(int e, const mesh::Mesh& m, const mesh::Points& x) {
 
 namespace {
 
+// The current positions of an element's nodes.
+[[gnu::always_inline]] inline void gather(const std::array<int, kTetNodes>& tet,
+                                          const mesh::Points& x, double xe[kTetNodes][3]) {
+  for (int a = 0; a < kTetNodes; ++a) {
+    xe[a][0] = x.x[tet[a]];
+    xe[a][1] = x.y[tet[a]];
+    xe[a][2] = x.z[tet[a]];
+  }
+}
+
 // F = sum_a x_a (dN_a/dX)^T at one point.
 [[gnu::always_inline]] inline void deformation_gradient(const double (*xe)[3], const double* g,
                                                         double F[9]) {
@@ -255,13 +265,8 @@ namespace {
 
 template <bool kEnergy>
 bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
-  const auto& tet = mesh_.tets[static_cast<std::size_t>(e)];
   double xe[kTetNodes][3];
-  for (int a = 0; a < kTetNodes; ++a) {
-    xe[a][0] = x.x[tet[a]];
-    xe[a][1] = x.y[tet[a]];
-    xe[a][2] = x.z[tet[a]];
-  }
+  gather(mesh_.tets[static_cast<std::size_t>(e)], x, xe);
   if constexpr (kEnergy) {
     *out = 0.0;
   } else {
@@ -378,18 +383,14 @@ std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
       out[e] = W / centroid_weight_[e];
       continue;
     }
-    const auto& tet = mesh_.tets[e];
+    double xe[kTetNodes][3];
+    gather(mesh_.tets[e], x, xe);
     double W = 0.0, V = 0.0;
     for (int q = 0; q < kQp; ++q) {
       const double* g = &grad_[(e * kQp + q) * kGradStride];
       const double w = weight_[e * kQp + q];
-      double F[9] = {};
-      for (int a = 0; a < kTetNodes; ++a) {
-        const double xa[3] = {x.x[tet[a]], x.y[tet[a]], x.z[tet[a]]};
-        for (int i = 0; i < 3; ++i) {
-          for (int j = 0; j < 3; ++j) F[3 * i + j] += xa[i] * g[3 * a + j];
-        }
-      }
+      double F[9];
+      deformation_gradient(xe, g, F);
       const double psi = neo_hookean_energy(material_, F);
       W += w * (std::isfinite(psi) ? psi : 0.0);
       V += w;

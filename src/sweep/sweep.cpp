@@ -179,26 +179,22 @@ std::string read_text(const fs::path& p) {
 
 config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitParser& parser) {
   std::vector<config::Override> overrides;
-  std::optional<std::string> resolution, model, bulk;
+  std::optional<config::Resolution> resolution;
+  std::optional<config::Model> model;
+  std::optional<config::BulkIntegration> bulk;
+  // A string key's value as its parser reads it, or an error naming the setting and the choices.
+  const auto parsed = [](const Setting& s, auto value, std::string_view choices) {
+    if (!value) throw config::CaseError(fmt::format("{}: {} must be {}", s.origin, s.key, choices));
+    return value;
+  };
   const auto add = [&](const Setting& s) {
     if (s.key == kModelKey) {
-      if (!config::parse_model(s.text)) {
-        throw config::CaseError(
-            fmt::format("{}: {} must be \"3d\" or \"axisymmetric\"", s.origin, kModelKey));
-      }
-      model = s.text;
+      model = parsed(s, config::parse_model(s.text), "\"3d\" or \"axisymmetric\"");
     } else if (s.key == kBulkKey) {
-      if (!config::parse_bulk_integration(s.text)) {
-        throw config::CaseError(
-            fmt::format("{}: {} must be \"full\" or \"reduced\"", s.origin, kBulkKey));
-      }
-      bulk = s.text;
+      bulk = parsed(s, config::parse_bulk_integration(s.text), "\"full\" or \"reduced\"");
     } else if (s.key == kResolutionKey) {
-      if (!config::parse_resolution(s.text)) {
-        throw config::CaseError(fmt::format("{}: {} must be \"coarse\", \"default\" or \"fine\"",
-                                            s.origin, kResolutionKey));
-      }
-      resolution = s.text;
+      resolution =
+          parsed(s, config::parse_resolution(s.text), "\"coarse\", \"default\" or \"fine\"");
     } else {
       overrides.push_back({s.key, s.text, s.origin});
     }
@@ -207,9 +203,9 @@ config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitP
   for (const auto& s : run.settings) add(s);
   auto c = spec.base ? config::load_case_file(*spec.base, overrides, &parser)
                      : config::default_case(overrides, &parser);
-  if (resolution) c.numerics.resolution = *config::parse_resolution(*resolution);
-  if (model) c.numerics.model = *config::parse_model(*model);
-  if (bulk) c.numerics.bulk_integration = *config::parse_bulk_integration(*bulk);
+  if (resolution) c.numerics.resolution = *resolution;
+  if (model) c.numerics.model = *model;
+  if (bulk) c.numerics.bulk_integration = bulk;
   if (!spec.title.empty()) {
     std::string vals;
     for (const auto& s : run.settings) vals += fmt::format(", {} = {}", s.key, s.text);

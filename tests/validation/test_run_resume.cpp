@@ -95,27 +95,43 @@ TEST(RunResume, AResumeKilledWhileRewritingTheSeriesCanBeResumedAgain) {
   EXPECT_EQ(read(paused / "series.csv"), read(straight / "series.csv"));
 }
 
-TEST(RunResume, ARunIsNotContinuedWithOtherNumerics) {
-  // A run paused, then its case changed so that the discretisation differs (as a snapjump with
-  // new defaults would see it): the resume names what differs and refuses.
-  const auto dir = std::filesystem::temp_directory_path() / "snapjump_resume_numerics_test";
+// An axisymmetric coarse run paused at 2 ms, in the fresh folder dir.
+void pause_a_run(const std::filesystem::path& dir) {
   std::filesystem::remove_all(dir);
   ASSERT_EQ(run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--quiet",
                  "--end-time", "10ms", "--pause-at", "2ms", "--output", dir.string()}),
             0);
-  const auto summary = read(dir / "summary.json");
+}
+
+// Adds a line under [numerics] of the run's case.toml.
+void add_to_numerics(const std::filesystem::path& dir, const std::string& line) {
   auto text = read(dir / "case.toml");
   const auto at = text.find("[numerics]\n");
   ASSERT_NE(at, std::string::npos) << text;
-  text.insert(at + 11, "elements_through_thickness = 3\n");
+  text.insert(at + 11, line + "\n");
   std::ofstream(dir / "case.toml") << text;
+}
+
+// --resume of the run, which must fail: its messages.
+std::string refused_resume(const std::filesystem::path& dir) {
   std::vector<std::string> args = {"snapjump", "run", "--resume", dir.string(), "--quiet"};
   std::vector<const char*> argv;
   for (const auto& a : args) argv.push_back(a.c_str());
   std::ostringstream out, err;
   EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
-  EXPECT_NE(err.str().find("other numerics than it started with"), std::string::npos) << err.str();
-  EXPECT_NE(err.str().find("when it started"), std::string::npos) << err.str();
+  return err.str();
+}
+
+TEST(RunResume, ARunIsNotContinuedWithOtherNumerics) {
+  // A run paused, then its case changed so that the discretisation differs (as a snapjump with
+  // new defaults would see it): the resume names what differs and refuses.
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_resume_numerics_test";
+  ASSERT_NO_FATAL_FAILURE(pause_a_run(dir));
+  const auto summary = read(dir / "summary.json");
+  ASSERT_NO_FATAL_FAILURE(add_to_numerics(dir, "elements_through_thickness = 3"));
+  const auto err = refused_resume(dir);
+  EXPECT_NE(err.find("other numerics than it started with"), std::string::npos) << err;
+  EXPECT_NE(err.find("when it started"), std::string::npos) << err;
   EXPECT_EQ(read(dir / "summary.json"), summary);  // still paused, not failed
 }
 
@@ -123,27 +139,16 @@ TEST(RunResume, ARunMadeBeforeTheBulkKeyIsNotContinuedWithAnotherRule) {
   // Summaries before session 10 had no bulk_integration; such a run used its model's rule then
   // (axisymmetric: reduced). Given "full" in its case.toml, the resume refuses and names it.
   const auto dir = std::filesystem::temp_directory_path() / "snapjump_resume_bulk_test";
-  std::filesystem::remove_all(dir);
-  ASSERT_EQ(run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--quiet",
-                 "--end-time", "10ms", "--pause-at", "2ms", "--output", dir.string()}),
-            0);
+  ASSERT_NO_FATAL_FAILURE(pause_a_run(dir));
   auto summary = nlohmann::json::parse(read(dir / "summary.json"));
   ASSERT_EQ(summary["numerics"]["bulk_integration"], "reduced");
   summary["numerics"].erase("bulk_integration");
   std::ofstream(dir / "summary.json") << summary.dump(2);
-  auto text = read(dir / "case.toml");
-  const auto at = text.find("[numerics]\n");
-  ASSERT_NE(at, std::string::npos) << text;
-  text.insert(at + 11, "bulk_integration = \"full\"\n");
-  std::ofstream(dir / "case.toml") << text;
-  std::vector<std::string> args = {"snapjump", "run", "--resume", dir.string(), "--quiet"};
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
-  EXPECT_NE(err.str().find("bulk_integration: \"reduced\" when it started, \"full\" now"),
+  ASSERT_NO_FATAL_FAILURE(add_to_numerics(dir, "bulk_integration = \"full\""));
+  const auto err = refused_resume(dir);
+  EXPECT_NE(err.find("bulk_integration: \"reduced\" when it started, \"full\" now"),
             std::string::npos)
-      << err.str();
+      << err;
 }
 
 }  // namespace
