@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "config/case.hpp"
+#include "config/files.hpp"
 #include "io/atomic_file.hpp"
 #include "popper/state_io.hpp"
 
@@ -129,22 +130,14 @@ void write_checkpoint(const fs::path& dir, const popper::Popper& pop, const Loop
 LoopState read_checkpoint(const fs::path& dir, popper::Popper& pop) {
   const fs::path path = dir / "checkpoint.bin";
   std::error_code ec;
-  const auto size = fs::file_size(path, ec);
-  if (ec) {
+  if (!fs::exists(path, ec)) {
     throw config::CaseError(
         fmt::format("--resume {}: no checkpoint.bin; the run stopped before its first checkpoint "
                     "(run it again)",
                     dir.string()));
   }
-  if (size > kMaxFile) {
-    throw CheckpointError(
-        fmt::format("{}: {} bytes, more than a checkpoint can be", path.string(), size));
-  }
-  std::ifstream f(path, std::ios::binary);
-  std::string bytes(size, '\0');
-  f.read(bytes.data(), static_cast<std::streamsize>(size));
-  if (!f) throw CheckpointError(fmt::format("{}: cannot be read", path.string()));
-  return decode_checkpoint(bytes, pop, path.string());
+  return decode_checkpoint(text::read_file<CheckpointError>(path, "a run's checkpoint", kMaxFile),
+                           pop, path.string());
 }
 
 }  // namespace snapjump::app

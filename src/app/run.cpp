@@ -364,12 +364,14 @@ bool Run::prepare_and_release() {
     preparation_progress(phase, t, fraction);
   });
   fmt::print(out_, "  prepared    {}\n", prep.message);
-  summary_["preparation"] = {{"inverted", prep.inverted},
-                             {"held", prep.held},
-                             {"buckling_pressure", prep.buckling_pressure},
-                             {"delta_p_j", pop_.delta_p_j()},
-                             {"plate_force", prep.plate_force},
-                             {"message", prep.message}};
+  summary_["preparation"] = {
+      {"inverted", prep.inverted},
+      {"held", prep.held},
+      {"buckling_pressure",
+       prep.buckling_pressure ? nlohmann::json(*prep.buckling_pressure) : nlohmann::json(nullptr)},
+      {"delta_p_j", pop_.delta_p_j()},
+      {"plate_force", prep.plate_force},
+      {"message", prep.message}};
   if (!prep.held) {
     summary_["status"] =
         prep.inverted ? io::run_status::kSnappedBack : io::run_status::kDidNotInvert;

@@ -11,6 +11,8 @@
 #include <numbers>
 #include <sstream>
 
+#include "config/files.hpp"
+
 namespace snapjump::config {
 namespace {
 
@@ -213,13 +215,13 @@ class Reader {
 
  private:
   // A string key's value as parse reads it; anything else (not a string, an unknown word) fails
-  // with the message.
+  // naming the key and the words parse reads.
   template <typename Parse>
-  auto parsed_string(const toml::node& node, const toml::key& key, Parse parse,
-                     const char* message) const {
+  auto parsed_string(const toml::node& node, const toml::key& key, std::string_view table,
+                     Parse parse, std::string_view choices) const {
     const auto* s = node.as_string();
     const auto v = parse(s ? std::string_view(s->get()) : std::string_view());
-    if (!v) fail(key.source(), message);
+    if (!v) fail(key.source(), fmt::format("{}.{} must be {}", table, key.str(), choices));
     return *v;
   }
 
@@ -229,19 +231,16 @@ class Reader {
       const auto origin = at(source_, key.source());
       if (table_name == "numerics" && name == kResolutionKey) {
         c.numerics.resolution =
-            parsed_string(node, key, parse_resolution,
-                          "numerics.resolution must be \"coarse\", \"default\" or \"fine\"");
+            parsed_string(node, key, table_name, parse_resolution, kResolutionChoices);
         continue;
       }
       if (table_name == "numerics" && name == kModelKey) {
-        c.numerics.model = parsed_string(node, key, parse_model,
-                                         "numerics.model must be \"3d\" or \"axisymmetric\"");
+        c.numerics.model = parsed_string(node, key, table_name, parse_model, kModelChoices);
         continue;
       }
       if (table_name == "numerics" && name == kBulkKey) {
         c.numerics.bulk_integration =
-            parsed_string(node, key, parse_bulk_integration,
-                          "numerics.bulk_integration must be \"full\" or \"reduced\"");
+            parsed_string(node, key, table_name, parse_bulk_integration, kBulkIntegrationChoices);
         continue;
       }
       if (table_name == "shell" && name == kMeshKey) {
@@ -545,11 +544,8 @@ Case parse_case(std::string_view toml_text, std::string_view source,
 
 Case load_case_file(const std::filesystem::path& path, std::span<const Override> overrides,
                     const units::UnitParser* parser) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw CaseError(fmt::format("{}: cannot open the case file", path.string()));
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_case(text.str(), path.string(), overrides, parser);
+  return parse_case(text::read_file<CaseError>(path, "the case file"), path.string(), overrides,
+                    parser);
 }
 
 Case default_case(std::span<const Override> overrides, const units::UnitParser* parser) {

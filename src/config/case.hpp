@@ -75,12 +75,15 @@ enum class Resolution { Coarse, Default, Fine };
 std::string_view to_string(Resolution r);
 // "coarse", "default", "fine"; nullopt for anything else.
 std::optional<Resolution> parse_resolution(std::string_view text);
+// The words each of these parsers reads, for messages.
+inline constexpr std::string_view kResolutionChoices = R"("coarse", "default" or "fine")";
 
 // The discretisation of the shell: the paper's 3D MPM, or the axisymmetric finite elements.
 enum class Model { ThreeD, Axisymmetric };
 std::string_view to_string(Model m);
 // "3d", "axisymmetric"; nullopt for anything else.
 std::optional<Model> parse_model(std::string_view text);
+inline constexpr std::string_view kModelChoices = R"("3d" or "axisymmetric")";
 
 // Where the elements integrate the bulk part of the energy, lambda/2 (ln J)^2: with the rest
 // (full; the 3D model's default, the paper's element) or at fewer points (reduced; the
@@ -90,6 +93,7 @@ enum class BulkIntegration { Full, Reduced };
 std::string_view to_string(BulkIntegration b);
 // "full", "reduced"; nullopt for anything else.
 std::optional<BulkIntegration> parse_bulk_integration(std::string_view text);
+inline constexpr std::string_view kBulkIntegrationChoices = R"("full" or "reduced")";
 
 // What a resolution preset sets where the case does not: the one table of the presets, read by
 // the cap mesher (element size, layers) and the popper (grid, axisymmetric elements).

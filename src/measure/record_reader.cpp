@@ -10,11 +10,14 @@
 #include <charconv>
 #include <cmath>
 #include <istream>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <system_error>
 #include <utility>
 
+#include "config/csv.hpp"
+#include "config/files.hpp"
 #include "config/text.hpp"
 #include "measure/time_series.hpp"
 
@@ -23,62 +26,6 @@ namespace {
 
 using text::lower;
 using text::trim;
-
-bool is_comment_or_blank(std::string_view line) {
-  const auto s = trim(line);
-  return s.empty() || s.front() == '#';
-}
-
-// Splits one line at `sep`, honouring double quotes (a quoted cell may hold the separator; ""
-// inside quotes is one quote). The quotes are removed. Throws on an unclosed quote.
-std::vector<std::string> split(std::string_view line, char sep, std::string_view at) {
-  std::vector<std::string> cells;
-  std::string cell;
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (quoted) {
-      if (ch == '"') {
-        if (i + 1 < line.size() && line[i + 1] == '"') {
-          cell.push_back('"');
-          ++i;
-        } else {
-          quoted = false;
-        }
-      } else {
-        cell.push_back(ch);
-      }
-    } else if (ch == '"' && trim(cell).empty()) {
-      cell.clear();
-      quoted = true;
-    } else if (ch == sep) {
-      cells.push_back(std::move(cell));
-      cell.clear();
-    } else {
-      cell.push_back(ch);
-    }
-  }
-  if (quoted) throw SeriesError(fmt::format("{}: a quote is not closed", at));
-  cells.push_back(std::move(cell));
-  return cells;
-}
-
-// The separator of a header line: ';' or a tab when the line has one of them and no comma
-// outside quotes, else ','.
-char detect_separator(std::string_view header) {
-  std::size_t commas = 0, semicolons = 0, tabs = 0;
-  bool quoted = false;
-  for (const char ch : header) {
-    if (ch == '"') quoted = !quoted;
-    if (quoted) continue;
-    commas += ch == ',';
-    semicolons += ch == ';';
-    tabs += ch == '\t';
-  }
-  if (commas == 0 && semicolons > 0) return ';';
-  if (commas == 0 && tabs > 0) return '\t';
-  return ',';
-}
 
 // A missing value: an empty cell or a spelling of NaN.
 bool is_missing(std::string_view cell) {
@@ -270,29 +217,28 @@ constexpr double kMinCoverage = 0.5;
 
 TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
                                 const units::UnitParser& parser, const ReadOptions& options) {
-  std::string line;
+  const std::string csv{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw SeriesError(fmt::format("{}: cannot be read", source));
+  return read_csv(std::string_view(csv), source, parser, options);
+}
+
+TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
+                                const units::UnitParser& parser, const ReadOptions& options) {
+  const char sep = text::detect_separator(csv);
+  const auto records = text::split_csv<SeriesError>(csv, sep, source);
   std::size_t line_no = 0;
   const auto at = [&] { return fmt::format("{}:{}", source, line_no); };
 
-  // The header: the first line that is not a comment or blank.
-  bool have_header = false;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line_no == 1 && line.starts_with("\xEF\xBB\xBF")) line.erase(0, 3);  // UTF-8 BOM
-    if (!is_comment_or_blank(line)) {
-      have_header = true;
-      break;
-    }
-  }
-  if (!have_header) {
+  // The header: the first record that is not a comment or blank.
+  if (records.empty()) {
     throw SeriesError(fmt::format(
         "{}: no header line; the first line that is not a '#' comment names the columns, e.g. "
         "\"t [ms],F [N],z [mm]\"",
         source));
   }
-  const char sep = detect_separator(line);
+  line_no = records.front().line;
   const bool decimal_comma = sep != ',';
-  const auto header_cells = split(line, sep, at());
+  const auto& header_cells = records.front().cells;
   std::vector<HeaderColumn> header;
   std::optional<std::size_t> contact_col;
   std::vector<std::string> notes;
@@ -360,10 +306,9 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
   std::vector<RawRow> rows;
   std::vector<char> textual(names.size(), 0);
   bool gaps_anywhere = false;
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (is_comment_or_blank(line)) continue;
-    const auto cells = split(line, sep, at());
+  for (std::size_t r = 1; r < records.size(); ++r) {
+    line_no = records[r].line;
+    const auto& cells = records[r].cells;
     if (cells.size() < header.size()) {
       throw SeriesError(fmt::format(
           "{}: {} cells, but the header has {} columns (column {} '{}' is missing)", at(),
@@ -412,7 +357,6 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
     }
     rows.push_back(std::move(row));
   }
-  if (in.bad()) throw SeriesError(fmt::format("{}: read error after line {}", source, line_no));
 
   // Rows out of order are sorted (with a note); rows of one time are merged, each column from
   // the row that has it; two different values of one column at one time are an error.
@@ -620,11 +564,10 @@ TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
 
 TimeSeries TimeSeries::read_csv_file(const std::filesystem::path& path,
                                      const units::UnitParser* parser, const ReadOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw SeriesError(fmt::format("{}: cannot open the file", path.string()));
-  if (parser != nullptr) return read_csv(in, path.string(), *parser, options);
+  const auto csv = text::read_file<SeriesError>(path, "a time series");
+  if (parser != nullptr) return read_csv(std::string_view(csv), path.string(), *parser, options);
   const units::UnitParser own;
-  return read_csv(in, path.string(), own, options);
+  return read_csv(std::string_view(csv), path.string(), own, options);
 }
 
 }  // namespace snapjump::measure

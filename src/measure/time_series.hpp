@@ -115,6 +115,10 @@ class TimeSeries {
   // (src/measure/record_reader.cpp)
   static TimeSeries read_csv(std::istream& in, std::string_view source,
                              const units::UnitParser& parser, const ReadOptions& options = {});
+  // The same from the text itself (the rules of text::split_csv; the separator is the header
+  // line's: ',' or else ';' or a tab, with decimal commas).
+  static TimeSeries read_csv(std::string_view csv, std::string_view source,
+                             const units::UnitParser& parser, const ReadOptions& options = {});
   // Reads a CSV file; makes its own UnitParser when none is given. Throws SeriesError.
   static TimeSeries read_csv_file(const std::filesystem::path& path,
                                   const units::UnitParser* parser = nullptr,

@@ -10,22 +10,13 @@
 #include <string_view>
 #include <system_error>
 
+#include "config/files.hpp"
 #include "plot/gnuplot.hpp"
 
 namespace snapjump::plot {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_text(const fs::path& path, std::string_view what) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
-    throw PlotInputError(fmt::format("{}: no such file ({})", path.string(), what));
-  }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw PlotInputError(fmt::format("{}: cannot be read", path.string()));
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 // The value of attribute `name` in the text of one XML tag, if present.
 std::optional<std::string> attribute(std::string_view tag, std::string_view name) {
@@ -61,7 +52,8 @@ std::optional<double> to_number(std::string_view s) {
 }  // namespace
 
 std::vector<Frame> read_pvd(const fs::path& path) {
-  const auto text = read_text(path, "the snapshot collection that `snapjump run` writes");
+  const auto text =
+      text::read_file<PlotInputError>(path, "the snapshot collection that `snapjump run` writes");
   std::vector<Frame> frames;
   std::size_t pos = 0;
   while ((pos = text.find("<DataSet", pos)) != std::string::npos) {
@@ -94,7 +86,7 @@ const Frame& nearest_frame(const std::vector<Frame>& frames, double t) {
 }
 
 std::vector<std::array<double, 3>> read_vtu_points(const fs::path& path) {
-  const auto text = read_text(path, "a snapshot listed in run.pvd");
+  const auto text = text::read_file<PlotInputError>(path, "a snapshot listed in run.pvd");
   const auto fail = [&](std::string_view why) {
     return PlotInputError(
         fmt::format("{}: {} (expected an ASCII VTK unstructured grid as "

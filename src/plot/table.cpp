@@ -11,6 +11,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "config/csv.hpp"
+#include "config/files.hpp"
 #include "config/text.hpp"
 #include "plot/gnuplot.hpp"
 
@@ -19,110 +21,19 @@ namespace {
 
 std::string trim(std::string_view s) { return std::string(text::trim(s)); }
 
-struct Record {
-  std::vector<std::string> cells;
-  std::size_t line = 0;  // where the record starts
-};
-
-// Splits CSV text into records of cells. Quoted fields may hold commas, newlines and doubled
-// quotes. A record whose first character is '#' is a comment; blank records are skipped.
-std::vector<Record> parse_records(const std::string& text, std::string_view source) {
-  std::vector<Record> records;
-  std::size_t line = 1;
-  std::size_t i = 0;
-  const std::size_t n = text.size();
-  while (i < n) {
-    Record rec;
-    rec.line = line;
-    if (text[i] == '#') {  // comment line
-      while (i < n && text[i] != '\n') ++i;
-      if (i < n) ++i;
-      ++line;
-      continue;
-    }
-    std::string cell;
-    bool quoted_cell = false;
-    bool done = false;
-    while (!done) {
-      if (i >= n) {
-        rec.cells.push_back(quoted_cell ? cell : trim(cell));
-        break;
-      }
-      const char c = text[i];
-      if (c == '"' && trim(cell).empty() && !quoted_cell) {
-        // A quoted field: up to the closing quote, "" is a quote.
-        cell.clear();
-        quoted_cell = true;
-        const std::size_t start_line = line;
-        ++i;
-        while (true) {
-          if (i >= n) {
-            throw PlotInputError(
-                fmt::format("{}:{}: a quoted field is never closed", source, start_line));
-          }
-          if (text[i] == '"') {
-            if (i + 1 < n && text[i + 1] == '"') {
-              cell += '"';
-              i += 2;
-              continue;
-            }
-            ++i;
-            break;
-          }
-          if (text[i] == '\n') ++line;
-          cell += text[i++];
-        }
-        continue;
-      }
-      if (c == ',') {
-        rec.cells.push_back(quoted_cell ? cell : trim(cell));
-        cell.clear();
-        quoted_cell = false;
-        ++i;
-        continue;
-      }
-      if (c == '\n') {
-        rec.cells.push_back(quoted_cell ? cell : trim(cell));
-        ++i;
-        ++line;
-        done = true;
-        continue;
-      }
-      if (quoted_cell) {
-        if (c != ' ' && c != '\t' && c != '\r') {
-          throw PlotInputError(
-              fmt::format("{}:{}: text after the closing quote of a field", source, line));
-        }
-        ++i;
-        continue;
-      }
-      cell += c;
-      ++i;
-    }
-    const bool blank = rec.cells.size() == 1 && rec.cells[0].empty();
-    if (!blank) records.push_back(std::move(rec));
-  }
-  return records;
-}
-
 }  // namespace
 
 Table Table::read_csv_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) {
-    throw PlotInputError(fmt::format("{}: no such file", path.string()));
-  }
-  if (std::filesystem::is_directory(path, ec)) {
-    throw PlotInputError(fmt::format("{}: is a folder, not a CSV file", path.string()));
-  }
-  std::ifstream in(path);
-  if (!in) throw PlotInputError(fmt::format("{}: cannot be read", path.string()));
-  return read_csv(in, path.string());
+  return read_csv(text::read_file<PlotInputError>(path, "a CSV table"), path.string());
 }
 
 Table Table::read_csv(std::istream& in, std::string_view source) {
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  auto records = parse_records(text, source);
+  return read_csv(std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()},
+                  source);
+}
+
+Table Table::read_csv(std::string_view csv, std::string_view source) {
+  auto records = text::split_csv<PlotInputError>(csv, ',', source);
   Table t;
   t.source_ = std::string(source);
   if (records.empty())

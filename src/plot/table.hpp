@@ -24,6 +24,8 @@ class Table {
   static Table read_csv_file(const std::filesystem::path& path);
   // The same from a stream; `source` names it in messages.
   static Table read_csv(std::istream& in, std::string_view source);
+  // The same from CSV text (the rules of text::split_csv, comma-separated).
+  static Table read_csv(std::string_view csv, std::string_view source);
 
   [[nodiscard]] const std::string& source() const { return source_; }
   [[nodiscard]] std::size_t rows() const { return cells_.size(); }

@@ -102,13 +102,14 @@ std::unique_ptr<ShellModel> make_shell_model(const config::Case& c, const Numeri
   return std::make_unique<MpmShell>(c, n, std::move(delta_p));
 }
 
-Popper::Popper(const config::Case& c, const Numerics& n)
+Popper::Popper(const config::Case& c, const Numerics& n, const PreparationSettings& settings)
     : case_(c),
       numerics_(n),
       model_(make_shell_model(c, n, [this] { return gas_.delta_p(); })),
       // The paper's reference state: the undeformed popper filled with air at p0.
       gas_(c.gas.p0, c.gas.alpha_n, c.gas.beta_n,
-           c.gas.container_volume + model_->undeformed_cavity_volume()) {
+           c.gas.container_volume + model_->undeformed_cavity_volume()),
+      settings_(settings) {
   shell_mass_ = model_->shell_mass();
   if (c.popper.wire_stiffness && !(c.popper.counterweight() > 0.0)) {
     throw config::CaseError(
@@ -123,6 +124,15 @@ Popper::Popper(const config::Case& c, const Numerics& n)
   }
   delta_p_j_ = theory::jump_pressure(c);
   container_.mass = grounding_mass();
+  const auto& st = settings_;
+  if (!(st.buckle_factor > 0.0 && st.ramp > 0.0 && st.max_wait >= 0.0 && st.progress_every > 0 &&
+        st.onset_sample_every > 0 && st.onset_factor > 1.0 && st.reference_window[0] >= 0.0 &&
+        st.reference_window[1] > st.reference_window[0])) {
+    throw std::invalid_argument(
+        "PreparationSettings: buckle_factor and ramp must be positive, max_wait not negative, "
+        "progress_every and onset_sample_every at least 1, onset_factor above 1, the reference "
+        "window an interval of pressures from 0 up");
+  }
 }
 
 double Popper::grounding_mass() const {
@@ -155,19 +165,71 @@ void Popper::advance_gas() {
   gas_.advance(model_->dt(), model_->cavity_volume() + case_.gas.container_volume);
 }
 
-Preparation Popper::prepare(const Progress& progress) {
+SnapOnset::SnapOnset(double p_low, double p_high, double factor)
+    : p_low_(p_low), p_high_(p_high), factor_(factor) {}
+
+void SnapOnset::sample(double t, double V, double p) {
+  if (onset_) return;
+  const bool first = !last_t_;
+  const double rate = first ? 0.0 : -(V - *last_V_) / (t - *last_t_);
+  last_t_ = t;
+  last_V_ = V;
+  if (first) return;
+  if (p >= p_low_ && p <= p_high_) {
+    reference_sum_ += rate;
+    ++reference_count_;
+  } else if (p > p_high_ && reference_count_ > 0 && reference_sum_ > 0.0 &&
+             rate > factor_ * reference_sum_ / reference_count_) {
+    onset_ = p;
+  }
+}
+
+double Popper::zoelly_pc() const {
+  return theory::zoelly_pressure(case_.material.E, case_.shell.h, case_.shell.R, case_.material.nu);
+}
+
+void Popper::begin_preparation(const char* call) {
+  if (begun_) {
+    throw std::logic_error(
+        fmt::format("Popper::{}() on a popper that has already been prepared", call));
+  }
+  begun_ = true;
+}
+
+Preparation Popper::buckle(const Progress& progress) {
+  begin_preparation("buckle");
   Preparation prep;
-  const double pc =
-      theory::zoelly_pressure(case_.material.E, case_.shell.h, case_.shell.R, case_.material.nu);
+  const double pc = zoelly_pc();
+  if (buckle(prep, progress, pc)) {
+    prep.message =
+        fmt::format("inverted under {:.0f} Pa ({:.2f} p_c), {}", settings_.buckle_factor * pc,
+                    settings_.buckle_factor, describe_onset(prep, pc, settings_.ramp));
+  }
+  return prep;
+}
+
+std::string Popper::describe_onset(const Preparation& prep, double pc, double ramp) {
+  if (!prep.buckling_pressure) {
+    return "onset of the snap not seen (the ramp too fast to sample its reference window)";
+  }
+  // Under a fast ramp the onset lags the pressure: the words say which ramp it was.
+  return fmt::format("snap onset at {:.0f} Pa ({:.3f} p_c, suction ramped over {:.0f} ms)",
+                     *prep.buckling_pressure, *prep.buckling_pressure / pc, 1e3 * ramp);
+}
+
+Preparation Popper::prepare(const Progress& progress) {
+  begin_preparation("prepare");
+  Preparation prep;
+  const double pc = zoelly_pc();
   if (!buckle(prep, progress, pc)) return prep;
   if (!set_delta_p_j(prep, progress, pc)) return prep;
   ground(prep, progress);
   const double p_buckle = settings_.buckle_factor * pc;
   prep.message = fmt::format(
-      "inverted under {:.0f} Pa ({:.2f} p_c), held at delta_p_j = {:.0f} Pa ({:.2f} p_c), "
+      "inverted under {:.0f} Pa ({:.2f} p_c), {}, held at delta_p_j = {:.0f} Pa ({:.2f} p_c), "
       "grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",
-      p_buckle, p_buckle / pc, delta_p_j_, delta_p_j_ / pc, 1e3 * model_->time(), prep.plate_force,
-      case_.popper.net_weight);
+      p_buckle, p_buckle / pc, describe_onset(prep, pc, settings_.ramp), delta_p_j_,
+      delta_p_j_ / pc, 1e3 * model_->time(), prep.plate_force, case_.popper.net_weight);
   return prep;
 }
 
@@ -177,18 +239,20 @@ Preparation Popper::prepare(const Progress& progress) {
 bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
   const auto& st = settings_;
   auto& m = *model_;
-  const double cavity0 = m.undeformed_cavity_volume();
   const double p_buckle = st.buckle_factor * pc;
+  SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
   m.start_held(numerics_.prep_damping);
   while (m.time() < st.ramp + st.max_wait) {
-    gas_.hold(p_buckle * std::min(1.0, m.time() / st.ramp));
+    const double p = p_buckle * std::min(1.0, m.time() / st.ramp);
+    gas_.hold(p);
     m.step();
+    if (!onset.pressure() && m.steps() % st.onset_sample_every == 0) {
+      onset.sample(m.time(), m.cavity_volume(), p);
+      prep.buckling_pressure = onset.pressure();
+    }
     if (m.steps() % st.progress_every == 0) {
       // At most ramp + max_wait: the fraction is of that bound.
       if (progress) progress("buckle", m.time(), m.time() / (st.ramp + st.max_wait));
-      if (prep.buckling_pressure == 0.0 && m.cavity_volume() < st.collapsed_cavity * cavity0) {
-        prep.buckling_pressure = gas_.delta_p();
-      }
       if (inverted() && m.kinetic_energy() < st.settled_energy * shell_mass_) {
         prep.inverted = true;
         return true;
@@ -290,6 +354,7 @@ void Popper::load_state(std::istream& in) {
   }
   model_->load_state(in, container_, case_.friction.mu);
   grounded_ = true;
+  begun_ = true;
   container_.z = get_finite(in, "container height");
   container_.vz = get_finite(in, "container velocity");
   container_.clamp_force = get_finite(in, "clamp force");

@@ -3,6 +3,7 @@
 // delta_p_j, ground, release) and measures what the experiment measures.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -78,11 +79,13 @@ struct FlightWatch {
 };
 
 struct Preparation {
-  bool inverted = false;           // the shell inverted under the buckling pressure
-  bool held = false;               // and stayed inverted at delta_p_j
-  double buckling_pressure = 0.0;  // pressure at which it snapped [Pa]
-  double plate_force = 0.0;        // after grounding, mean plate force over the settling's end [N]
-  std::string message;             // what happened, in words
+  bool inverted = false;  // the shell inverted under the buckling pressure
+  bool held = false;      // and stayed inverted at delta_p_j
+  // Pressure at the onset of the snap [Pa] (PreparationSettings: the onset rule); nothing when
+  // the rule could not see it (a ramp too fast to sample the reference window).
+  std::optional<double> buckling_pressure;
+  double plate_force = 0.0;  // after grounding, mean plate force over the settling's end [N]
+  std::string message;       // what happened, in words
 };
 
 // The quasi-static phases' settings (../shared/guide/simulation.md: only their end states
@@ -93,11 +96,16 @@ struct PreparationSettings {
   // held at most max_wait for the shell to invert. Inverted: the apex above the outer rim and the
   // shell's kinetic energy below settled_energy per kg of shell.
   double buckle_factor = 1.4;
-  double ramp = 0.02;             // [s]
-  double max_wait = 0.1;          // [s]
-  double settled_energy = 1e-5;   // [J/kg]
-  double collapsed_cavity = 0.5;  // the buckling pressure is read when the cavity is this
-                                  // fraction of the undeformed one
+  double ramp = 0.02;            // [s]
+  double max_wait = 0.1;         // [s]
+  double settled_energy = 1e-5;  // [J/kg]
+  // The buckling pressure is the suction at the onset of the snap (SnapOnset): the cavity volume,
+  // sampled every onset_sample_every steps, shrinks faster than onset_factor times its mean rate
+  // while the suction rose from reference_window[0] to reference_window[1] p_c (a window below
+  // the onset of any cap the protocol expects to invert).
+  int onset_sample_every = 20;
+  double onset_factor = 5.0;
+  std::array<double, 2> reference_window = {0.3, 0.6};
   // Phase 2, set: down to delta_p_j over down, then held for settle.
   double down = 0.02;    // [s]
   double settle = 0.02;  // [s]
@@ -114,13 +122,34 @@ struct PreparationSettings {
   int progress_every = 200;
 };
 
+// The onset of a snap under a rising suction, from samples of the cavity volume: the first
+// sample past the reference window of pressures whose rate of shrinking exceeds factor times the
+// window's mean rate. The snap is fast where the quasi-static shrinking is slow, so the rule
+// needs no threshold of its own in m^3/s.
+class SnapOnset {
+ public:
+  // The reference window's pressures [Pa], and the factor.
+  SnapOnset(double p_low, double p_high, double factor);
+  // The cavity volume V [m^3] at time t [s] under the suction p [Pa].
+  void sample(double t, double V, double p);
+  // The suction at the onset, once seen.
+  [[nodiscard]] std::optional<double> pressure() const { return onset_; }
+
+ private:
+  double p_low_, p_high_, factor_;
+  double reference_sum_ = 0.0;
+  int reference_count_ = 0;
+  std::optional<double> last_t_, last_V_;
+  std::optional<double> onset_;
+};
+
 // Progress callback: phase name, simulated time in the phase, fraction done (0..1, or < 0 when
 // unknown; for a phase that may end early, the fraction of its longest duration).
 using Progress = std::function<void(const std::string& phase, double t, double fraction)>;
 
 class Popper {
  public:
-  Popper(const config::Case& c, const Numerics& n);
+  Popper(const config::Case& c, const Numerics& n, const PreparationSettings& settings = {});
   // The shell model's rules and the gas's callbacks hold `this` and the container's address: a
   // popper stays where it was made.
   Popper(const Popper&) = delete;
@@ -131,6 +160,11 @@ class Popper {
   // Phases 1-3 (quasi-static, damped): buckle, set delta_p_j, ground. Returns what happened; the
   // popper is then ready for release() if prep.held.
   Preparation prepare(const Progress& progress = {});
+  // Phase 1 alone: the rim held, the suction raised as prepare() raises it until the shell has
+  // inverted and settled. The project's one buckling driver: the snap-through validation compares
+  // its buckling pressure with Zoelly's p_c. A popper is prepared once, by prepare() or by
+  // buckle() (a second call throws std::logic_error); after buckle() it cannot be released.
+  Preparation buckle(const Progress& progress = {});
   [[nodiscard]] const PreparationSettings& preparation_settings() const { return settings_; }
   // t = 0: opens the valve; from here on the run is physical (no damping).
   void release();
@@ -171,7 +205,15 @@ class Popper {
   bool buckle(Preparation& prep, const Progress& progress, double pc);
   bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc);
   void ground(Preparation& prep, const Progress& progress);
+  // The protocol's one test of "inverted": the apex above the outer rim.
   [[nodiscard]] bool inverted() const { return model_->apex_z() > model_->outer_rim_z(); }
+  // The buckling pressure in words, with the ramp [s] it was measured under.
+  static std::string describe_onset(const Preparation& prep, double pc, double ramp);
+  // Zoelly's p_c of the case's shell [Pa].
+  [[nodiscard]] double zoelly_pc() const;
+  // Marks the preparation begun; throws std::logic_error when it had begun already (or a state
+  // was loaded).
+  void begin_preparation(const char* call);
 
   config::Case case_;
   Numerics numerics_;
@@ -184,6 +226,7 @@ class Popper {
   core::RigidBody counterweight_;
   double delta_p_j_ = 0.0;
   PreparationSettings settings_;
+  bool begun_ = false;     // prepare() or buckle() has run, or a state was loaded
   bool grounded_ = false;  // on the plate, ready for release()
   double shell_mass_ = 0.0;
   double z_release_ = 0.0;  // container z at t = 0

@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "config/files.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/run_status.hpp"
@@ -161,20 +162,20 @@ using io::csv_field;
 std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.10g}", v) : std::string(); }
 
 std::optional<nlohmann::json> read_json(const fs::path& p) {
-  std::ifstream f(p);
-  if (!f) return std::nullopt;
+  std::string text;
+  if (text::read_file_into(p, text)) return std::nullopt;
   try {
-    return nlohmann::json::parse(f);
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception&) {
     return std::nullopt;
   }
 }
 
+// The file's text; empty when there is none.
 std::string read_text(const fs::path& p) {
-  std::ifstream f(p);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
+  std::string text;
+  if (text::read_file_into(p, text)) return {};
+  return text;
 }
 
 config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitParser& parser) {
@@ -189,12 +190,11 @@ config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitP
   };
   const auto add = [&](const Setting& s) {
     if (s.key == kModelKey) {
-      model = parsed(s, config::parse_model(s.text), "\"3d\" or \"axisymmetric\"");
+      model = parsed(s, config::parse_model(s.text), config::kModelChoices);
     } else if (s.key == kBulkKey) {
-      bulk = parsed(s, config::parse_bulk_integration(s.text), "\"full\" or \"reduced\"");
+      bulk = parsed(s, config::parse_bulk_integration(s.text), config::kBulkIntegrationChoices);
     } else if (s.key == kResolutionKey) {
-      resolution =
-          parsed(s, config::parse_resolution(s.text), "\"coarse\", \"default\" or \"fine\"");
+      resolution = parsed(s, config::parse_resolution(s.text), config::kResolutionChoices);
     } else {
       overrides.push_back({s.key, s.text, s.origin});
     }
@@ -334,11 +334,7 @@ Spec parse_spec(std::string_view toml_text, const fs::path& file) {
 }
 
 Spec load_spec(const fs::path& file) {
-  std::ifstream f(file);
-  if (!f) throw SweepError(fmt::format("cannot read the sweep file {}", file.string()));
-  std::stringstream s;
-  s << f.rdbuf();
-  return parse_spec(s.str(), file);
+  return parse_spec(text::read_file<SweepError>(file, "the sweep file"), file);
 }
 
 config::Case make_case(const Spec& spec, const RunPlan& run) {

@@ -267,7 +267,7 @@ TEST(TimeSeriesCsvErrors, EmptyInputAndMissingFile) {
     (void)TimeSeries::read_csv_file("/nonexistent-dir/run.csv");
     FAIL() << "no error";
   } catch (const SeriesError& e) {
-    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/run.csv: cannot open"),
+    EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/run.csv: no such file (a time series)"),
               std::string::npos);
   }
 }

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+
 #include "config/case.hpp"
 #include "popper/popper.hpp"
 
@@ -34,6 +36,66 @@ TEST(Numerics, ThePresetsSetTheGridAndTheAxisymmetricElements) {
   }
   EXPECT_EQ(config::preset(config::Resolution::Default).grid_cells_per_thickness, 4.0);
   EXPECT_EQ(config::preset(config::Resolution::Fine).layers, 2);
+}
+
+// The onset rule on a made-up record sampled every millisecond: the suction rises at 10 kPa/s and
+// the volume shrinks at 1e-6 m^3/s, then, from the sample at 900 Pa on, at 1e-4 m^3/s. The window
+// (300, 600) Pa sees the slow rate; the first sample whose interval shrank more than 5 times
+// faster is the next one, at 910 Pa.
+TEST(SnapOnset, FirstSampleFasterThanTheWindowsRate) {
+  SnapOnset onset(300.0, 600.0, 5.0);
+  double V = 1e-3;
+  for (int k = 0; k <= 120; ++k) {
+    const double t = 1e-3 * k, p = 1e4 * t;
+    onset.sample(t, V, p);
+    if (k <= 90) {
+      EXPECT_FALSE(onset.pressure()) << p;
+    }
+    V -= (k < 90 ? 1e-6 : 1e-4) * 1e-3;
+  }
+  ASSERT_TRUE(onset.pressure());
+  EXPECT_NEAR(*onset.pressure(), 910.0, 1e-9);
+  // A record that never enters the window has no reference: no onset, however fast the snap.
+  SnapOnset late(300.0, 600.0, 5.0);
+  late.sample(0.0, 1e-3, 700.0);
+  late.sample(1e-3, 0.5e-3, 800.0);
+  EXPECT_FALSE(late.pressure());
+}
+
+// The buckling phase alone (the protocol's one buckling driver): the cheap axisymmetric coarse
+// popper inverts, its buckling pressure is read, and a popper is prepared only once.
+TEST(Protocol, BucklePhaseAloneThenNoSecondPreparation) {
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = config::Resolution::Coarse;
+  Popper pop(c, resolve_numerics(c));
+  const auto prep = pop.buckle();
+  EXPECT_TRUE(prep.inverted) << prep.message;
+  ASSERT_TRUE(prep.buckling_pressure) << prep.message;
+  EXPECT_GT(*prep.buckling_pressure, 0.0);
+  EXPECT_FALSE(prep.held);  // the phase that sets delta_p_j has not run
+  EXPECT_GT(pop.model().apex_z(), pop.model().outer_rim_z());
+  EXPECT_THROW((void)pop.prepare(), std::logic_error);
+  EXPECT_THROW((void)pop.buckle(), std::logic_error);
+  EXPECT_THROW(pop.release(), std::logic_error);
+}
+
+TEST(Protocol, SettingsThatCannotRunAreRefused) {
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = config::Resolution::Coarse;
+  const auto n = resolve_numerics(c);
+  for (const auto broken : {+[](PreparationSettings& s) { s.ramp = 0.0; },
+                            +[](PreparationSettings& s) { s.buckle_factor = -1.0; },
+                            +[](PreparationSettings& s) { s.onset_factor = 1.0; },
+                            +[](PreparationSettings& s) {
+                              s.reference_window = {0.6, 0.3};
+                            },
+                            +[](PreparationSettings& s) { s.progress_every = 0; }}) {
+    PreparationSettings s;
+    broken(s);
+    EXPECT_THROW(Popper(c, n, s), std::invalid_argument);
+  }
 }
 
 }  // namespace
