@@ -1,13 +1,18 @@
-// What the MPM tests share: a force provider that gives none, and random particles with random
-// velocities and affine matrices.
+// What the MPM tests share: a force provider that gives none, random particles with random
+// velocities and affine matrices, and the shell body as a force provider (hybrid/) under short
+// names.
 #pragma once
 
 #include <random>
 #include <vector>
 
+#include "hybrid/body_forces.hpp"
 #include "mpm/stepper.hpp"
 
 namespace snapjump::mpm::testing {
+
+using hybrid::BodyForces;
+using hybrid::particles_of;
 
 class NoForces final : public ForceProvider {
  public:

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "fem/body.hpp"
-#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mesh/solid_mesher.hpp"
 #include "mpm/grid.hpp"
@@ -20,12 +19,9 @@
 
 namespace snapjump::mpm {
 
-using hybrid::BodyForces;
-using hybrid::particles_of;
 namespace {
 
-using testing::NoForces;
-using testing::random_particles;
+using namespace testing;  // mpm_test_support.hpp
 
 // The nodes a particle's stencil touches, as integer coordinates, from the grid's grouping.
 std::vector<std::array<std::int64_t, 3>> stencil_nodes(const SparseGrid& g, std::size_t p) {

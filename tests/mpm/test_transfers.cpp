@@ -12,7 +12,6 @@
 #include <vector>
 
 #include "fem/body.hpp"
-#include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mesh/solid_mesher.hpp"
 #include "mpm/grid.hpp"
@@ -21,12 +20,9 @@
 
 namespace snapjump::mpm {
 
-using hybrid::BodyForces;
-using hybrid::particles_of;
 namespace {
 
-using testing::NoForces;
-using testing::random_particles;
+using namespace testing;  // mpm_test_support.hpp
 
 TEST(Transfers, WeightsArePartitionOfUnityWithZeroFirstMoment) {
   for (double x : {0.0, 0.3, 0.5, 0.99, -1.7, 12.25}) {
