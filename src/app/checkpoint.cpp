@@ -130,7 +130,7 @@ void write_checkpoint(const fs::path& dir, const popper::Popper& pop, const Loop
 LoopState read_checkpoint(const fs::path& dir, popper::Popper& pop) {
   const fs::path path = dir / "checkpoint.bin";
   std::error_code ec;
-  if (!fs::exists(path, ec)) {
+  if (fs::status(path, ec).type() == fs::file_type::not_found) {
     throw config::CaseError(
         fmt::format("--resume {}: no checkpoint.bin; the run stopped before its first checkpoint "
                     "(run it again)",

@@ -7,98 +7,104 @@ namespace {
 
 constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
 
-// From position i, the first character that is not a blank, tab or carriage return (or the
-// end); a tab that separates cells is not a blank.
-std::size_t skip_blanks(std::string_view s, std::size_t i, char separator) {
-  const auto blank = [separator](char ch) {
-    return ch != separator && (ch == ' ' || ch == '\t' || ch == '\r');
-  };
-  while (i < s.size() && blank(s[i])) ++i;
-  return i;
+std::string_view without_byte_order_mark(std::string_view text) {
+  if (text.starts_with(kByteOrderMark)) text.remove_prefix(kByteOrderMark.size());
+  return text;
+}
+
+// A line no record starts on: blank, or a comment.
+bool skipped_line(std::string_view line) {
+  const auto t = trim(line);
+  return t.empty() || t.front() == '#';
+}
+
+// The line of `text` that starts at i, without its line break.
+std::string_view line_at(std::string_view text, std::size_t i) {
+  const auto end = text.find('\n', i);
+  return text.substr(i, end == std::string_view::npos ? std::string_view::npos : end - i);
 }
 
 }  // namespace
 
-std::vector<CsvRecord> split_csv(std::string_view text, char separator,
-                                 std::optional<CsvProblem>& problem) {
-  problem.reset();
-  if (text.starts_with(kByteOrderMark)) text.remove_prefix(kByteOrderMark.size());
-  std::vector<CsvRecord> records;
-  std::size_t line = 1, i = 0;
+CsvReader::CsvReader(std::string_view text, char separator)
+    : text_(without_byte_order_mark(text)), separator_(separator) {}
+
+bool CsvReader::next(CsvRecord& record) {
+  if (problem_) return false;
+  const auto& text = text_;
   const std::size_t n = text.size();
-  while (i < n) {
-    CsvRecord rec;
-    rec.line = line;
-    if (const auto first = skip_blanks(text, i, separator); first < n && text[first] == '#') {
-      while (i < n && text[i] != '\n') ++i;
-      if (i < n) ++i;
-      ++line;
-      continue;
-    }
-    bool end_of_record = false;
-    while (!end_of_record) {
-      // One cell, from i.
-      std::string cell;
-      const auto first = skip_blanks(text, i, separator);
-      if (first < n && text[first] == '"') {
-        const std::size_t opened_on = line;
-        i = first + 1;
-        while (true) {
-          if (i >= n) {
-            problem = CsvProblem{opened_on, "a quoted cell is never closed"};
-            return {};
-          }
-          if (text[i] == '"') {
-            if (i + 1 < n && text[i + 1] == '"') {
-              cell += '"';
-              i += 2;
-              continue;
-            }
-            ++i;
-            break;
-          }
-          if (text[i] == '\n') ++line;
-          cell += text[i++];
-        }
-        i = skip_blanks(text, i, separator);
-        if (i < n && text[i] != separator && text[i] != '\n') {
-          problem = CsvProblem{line, "text after the closing quote of a cell"};
-          return {};
-        }
-      } else {
-        const auto start = i;
-        while (i < n && text[i] != separator && text[i] != '\n') ++i;
-        cell = trim(text.substr(start, i - start));
-      }
-      rec.cells.push_back(std::move(cell));
-      if (i >= n) {
-        end_of_record = true;
-      } else if (text[i] == '\n') {
-        ++i;
-        ++line;
-        end_of_record = true;
-      } else {
-        ++i;  // the separator: another cell follows, empty at the end of the text
-      }
-    }
-    const bool is_blank = rec.cells.size() == 1 && rec.cells.front().empty();
-    if (!is_blank) records.push_back(std::move(rec));
+  // Blanks within a line: a tab that separates cells is not one.
+  const auto skip_blanks = [&](std::size_t i) {
+    while (i < n && text[i] != separator_ && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r'))
+      ++i;
+    return i;
+  };
+  while (i_ < n && skipped_line(line_at(text, i_))) {
+    i_ += line_at(text, i_).size();
+    if (i_ < n) ++i_;  // the line break
+    ++line_;
   }
-  return records;
+  if (i_ >= n) return false;
+  record.cells.clear();
+  record.line = line_;
+  std::size_t i = i_;
+  while (true) {
+    // One cell, from i.
+    std::string cell;
+    const auto first = skip_blanks(i);
+    if (first < n && text[first] == '"') {
+      const std::size_t opened_on = line_;
+      i = first + 1;
+      while (true) {
+        if (i >= n) {
+          problem_ = CsvProblem{opened_on, "a quoted cell is never closed"};
+          return false;
+        }
+        if (text[i] == '"') {
+          if (i + 1 < n && text[i + 1] == '"') {
+            cell += '"';
+            i += 2;
+            continue;
+          }
+          ++i;
+          break;
+        }
+        if (text[i] == '\n') ++line_;
+        cell += text[i++];
+      }
+      i = skip_blanks(i);
+      if (i < n && text[i] != separator_ && text[i] != '\n') {
+        problem_ = CsvProblem{line_, "text after the closing quote of a cell"};
+        return false;
+      }
+    } else {
+      const auto start = i;
+      while (i < n && text[i] != separator_ && text[i] != '\n') ++i;
+      cell = trim(text.substr(start, i - start));
+    }
+    record.cells.push_back(std::move(cell));
+    if (i >= n) break;
+    if (text[i] == '\n') {
+      ++i;
+      ++line_;
+      break;
+    }
+    ++i;  // the separator: another cell follows, empty at the end of the text
+  }
+  i_ = i;
+  return true;
 }
 
 char detect_separator(std::string_view text) {
-  if (text.starts_with(kByteOrderMark)) text.remove_prefix(kByteOrderMark.size());
+  text = without_byte_order_mark(text);
   std::string_view header;
-  while (!text.empty()) {
-    const auto end = text.find('\n');
-    const auto line = text.substr(0, end);
-    text = end == std::string_view::npos ? std::string_view{} : text.substr(end + 1);
-    const auto t = trim(line);
-    if (!t.empty() && t.front() != '#') {
+  for (std::size_t i = 0; i < text.size();) {
+    const auto line = line_at(text, i);
+    if (!skipped_line(line)) {
       header = line;
       break;
     }
+    i += line.size() + 1;
   }
   std::size_t commas = 0, semicolons = 0, tabs = 0;
   bool quoted = false;

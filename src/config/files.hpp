@@ -17,8 +17,9 @@ namespace snapjump::text {
 inline constexpr std::uintmax_t kAnySize = std::numeric_limits<std::uintmax_t>::max();
 
 // Reads the file into `bytes`. Returns what went wrong, in words that follow the file's name
-// ("no such file", "is a folder, not a file", "N bytes, more than M", "cannot be read"), or
-// nothing when it was read.
+// ("no such file", "is a folder, not a file", "is not a regular file", "more than N bytes such a
+// file can have", "cannot be read (why)"), or nothing when it was read. Only regular files are
+// read (a pipe or a device could be endless).
 std::optional<std::string> read_file_into(const std::filesystem::path& path, std::string& bytes,
                                           std::uintmax_t max_bytes = kAnySize);
 

@@ -218,27 +218,27 @@ constexpr double kMinCoverage = 0.5;
 TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
                                 const units::UnitParser& parser, const ReadOptions& options) {
   const std::string csv{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) throw SeriesError(fmt::format("{}: cannot be read", source));
   return read_csv(std::string_view(csv), source, parser, options);
 }
 
 TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
                                 const units::UnitParser& parser, const ReadOptions& options) {
   const char sep = text::detect_separator(csv);
-  const auto records = text::split_csv<SeriesError>(csv, sep, source);
+  text::CsvReader reader(csv, sep);
+  text::CsvRecord record;
   std::size_t line_no = 0;
   const auto at = [&] { return fmt::format("{}:{}", source, line_no); };
 
-  // The header: the first record that is not a comment or blank.
-  if (records.empty()) {
+  // The header: the first record (comments and blank lines are no records).
+  if (!reader.next<SeriesError>(record, source)) {
     throw SeriesError(fmt::format(
         "{}: no header line; the first line that is not a '#' comment names the columns, e.g. "
         "\"t [ms],F [N],z [mm]\"",
         source));
   }
-  line_no = records.front().line;
+  line_no = record.line;
   const bool decimal_comma = sep != ',';
-  const auto& header_cells = records.front().cells;
+  const auto header_cells = std::move(record.cells);
   std::vector<HeaderColumn> header;
   std::optional<std::size_t> contact_col;
   std::vector<std::string> notes;
@@ -306,9 +306,9 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
   std::vector<RawRow> rows;
   std::vector<char> textual(names.size(), 0);
   bool gaps_anywhere = false;
-  for (std::size_t r = 1; r < records.size(); ++r) {
-    line_no = records[r].line;
-    const auto& cells = records[r].cells;
+  while (reader.next<SeriesError>(record, source)) {
+    line_no = record.line;
+    const auto& cells = record.cells;
     if (cells.size() < header.size()) {
       throw SeriesError(fmt::format(
           "{}: {} cells, but the header has {} columns (column {} '{}' is missing)", at(),

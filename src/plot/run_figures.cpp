@@ -145,21 +145,17 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
                          const SeriesFigureOptions& series_options) {
   require_run_folder(run_dir);
   const auto csv = run_dir / "series.csv";
-  std::error_code ec;
-  if (!fs::is_regular_file(csv, ec)) {
-    throw PlotInputError(
-        fmt::format("{}: no such file (the time series that `snapjump run` writes)", csv.string()));
-  }
-  const bool with_experiment = !series_options.experiment.empty();
-  auto result = figure_paths(
-      options, run_dir / "figures" / (with_experiment ? "series-experiment" : "series"));
-  auto& notes = result.notes;
+  // Read before anything is written: a folder without its series gets no figures folder.
   std::optional<measure::TimeSeries> read;
   try {
     read.emplace(measure::TimeSeries::read_csv_file(csv));
   } catch (const measure::SeriesError& e) {
     throw PlotInputError(e.what());
   }
+  const bool with_experiment = !series_options.experiment.empty();
+  auto result = figure_paths(
+      options, run_dir / "figures" / (with_experiment ? "series-experiment" : "series"));
+  auto& notes = result.notes;
   const auto& s = *read;
   {
     std::string missing;

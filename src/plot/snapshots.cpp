@@ -4,11 +4,9 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 #include <optional>
 #include <string_view>
-#include <system_error>
 
 #include "config/files.hpp"
 #include "plot/gnuplot.hpp"

@@ -5,11 +5,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <initializer_list>
 #include <iterator>
-#include <sstream>
-#include <system_error>
 
 #include "config/csv.hpp"
 #include "config/files.hpp"

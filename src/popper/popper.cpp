@@ -127,11 +127,12 @@ Popper::Popper(const config::Case& c, const Numerics& n, const PreparationSettin
   const auto& st = settings_;
   if (!(st.buckle_factor > 0.0 && st.ramp > 0.0 && st.max_wait >= 0.0 && st.progress_every > 0 &&
         st.onset_sample_every > 0 && st.onset_factor > 1.0 && st.reference_window[0] >= 0.0 &&
-        st.reference_window[1] > st.reference_window[0])) {
+        st.reference_window[1] > st.reference_window[0] &&
+        st.reference_window[1] < st.buckle_factor)) {
     throw std::invalid_argument(
         "PreparationSettings: buckle_factor and ramp must be positive, max_wait not negative, "
         "progress_every and onset_sample_every at least 1, onset_factor above 1, the reference "
-        "window an interval of pressures from 0 up");
+        "window an interval of pressures from 0 up that ends below buckle_factor");
   }
 }
 
@@ -170,6 +171,7 @@ SnapOnset::SnapOnset(double p_low, double p_high, double factor)
 
 void SnapOnset::sample(double t, double V, double p) {
   if (onset_) return;
+  if (last_t_ && !(t > *last_t_)) return;  // a sample no later than the last tells nothing
   const bool first = !last_t_;
   const double rate = first ? 0.0 : -(V - *last_V_) / (t - *last_t_);
   last_t_ = t;
@@ -210,7 +212,8 @@ Preparation Popper::buckle(const Progress& progress) {
 
 std::string Popper::describe_onset(const Preparation& prep, double pc, double ramp) {
   if (!prep.buckling_pressure) {
-    return "onset of the snap not seen (the ramp too fast to sample its reference window)";
+    return "onset of the snap not seen (the cavity never shrank onset_factor times faster than "
+           "while the suction crossed the reference window)";
   }
   // Under a fast ramp the onset lags the pressure: the words say which ramp it was.
   return fmt::format("snap onset at {:.0f} Pa ({:.3f} p_c, suction ramped over {:.0f} ms)",

@@ -6,11 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "config/files.hpp"
 #include "io/atomic_file.hpp"

@@ -1,5 +1,7 @@
 // The readers' shared rules: CSV records (text::split_csv) and whole files (text::read_file).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -61,6 +63,30 @@ TEST(Csv, EmptyCellsAndATrailingSeparator) {
   EXPECT_EQ(split("a,b,").front().cells, (Cells{"a", "b", ""}));
 }
 
+TEST(Csv, LinesOfBlanksAndIndentedCommentsAreSkippedWhateverTheSeparator) {
+  // Spreadsheets end tab-separated exports with lines of tabs.
+  const auto r = split("t\tF\n\t\t\n0\t1\n\t# note\n\t\t\r\n1\t2\n", '\t');
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_EQ(r[1].cells, (Cells{"0", "1"}));
+  EXPECT_EQ(r[2].cells, (Cells{"1", "2"}));
+  EXPECT_EQ(r[2].line, 6u);
+  EXPECT_EQ(detect_separator("\t\t\n\t# c\nt\tF\n"), '\t');
+}
+
+TEST(Csv, RecordsOneAtATime) {
+  CsvReader reader("a,b\n\"x\ny\",2\n\"open\n", ',');
+  CsvRecord rec;
+  ASSERT_TRUE(reader.next(rec));
+  EXPECT_EQ(rec.cells, (Cells{"a", "b"}));
+  ASSERT_TRUE(reader.next(rec));
+  EXPECT_EQ(rec.cells, (Cells{"x\ny", "2"}));
+  EXPECT_EQ(rec.line, 2u);
+  EXPECT_FALSE(reader.next(rec));
+  ASSERT_TRUE(reader.problem());
+  EXPECT_EQ(reader.problem()->line, 4u);
+  EXPECT_FALSE(reader.next(rec));  // and stays stopped
+}
+
 TEST(Csv, TabAndSemicolonSeparators) {
   // A tab that separates is not a blank: an empty cell before a quoted one stays a cell.
   const auto r = split("t\tF\tnote\n0\t\t\"x\ty\"\n", '\t');
@@ -88,9 +114,11 @@ TEST(Csv, SeparatorOfTheHeaderLine) {
 class ReadFile : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ =
-        std::filesystem::temp_directory_path() /
-        ("snapjump_read_file_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()));
+    // One folder per test and process: ctest runs the tests side by side.
+    dir_ = std::filesystem::temp_directory_path() /
+           ("snapjump_read_file_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
     std::filesystem::create_directories(dir_);
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
@@ -120,8 +148,12 @@ TEST_F(ReadFile, SaysWhatWentWrong) {
   const auto p = dir_ / "big.txt";
   std::ofstream(p) << "0123456789";
   EXPECT_EQ(read_error(p, 4),
-            p.string() + ": 10 bytes, more than the 4 such a file can have (a test file)");
+            p.string() + ": more than the 4 bytes such a file can have (a test file)");
   EXPECT_EQ(read_error(p, 10), "no error");
+  // A pipe could be endless: it is refused, not read.
+  const auto fifo = dir_ / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_EQ(read_error(fifo), fifo.string() + ": is not a regular file (a test file)");
 }
 
 }  // namespace

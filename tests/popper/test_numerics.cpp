@@ -56,6 +56,14 @@ TEST(SnapOnset, FirstSampleFasterThanTheWindowsRate) {
   ASSERT_TRUE(onset.pressure());
   EXPECT_NEAR(*onset.pressure(), 910.0, 1e-9);
   // A record that never enters the window has no reference: no onset, however fast the snap.
+  // A sample no later than the one before is ignored (no division by a zero interval).
+  SnapOnset same_time(300.0, 600.0, 5.0);
+  same_time.sample(0.0, 1e-3, 400.0);
+  same_time.sample(0.0, 0.9e-3, 400.0);
+  same_time.sample(1e-3, 0.999e-3, 500.0);
+  same_time.sample(2e-3, 0.5e-3, 700.0);
+  ASSERT_TRUE(same_time.pressure());
+  EXPECT_EQ(*same_time.pressure(), 700.0);
   SnapOnset late(300.0, 600.0, 5.0);
   late.sample(0.0, 1e-3, 700.0);
   late.sample(1e-3, 0.5e-3, 800.0);
@@ -90,6 +98,10 @@ TEST(Protocol, SettingsThatCannotRunAreRefused) {
                             +[](PreparationSettings& s) { s.onset_factor = 1.0; },
                             +[](PreparationSettings& s) {
                               s.reference_window = {0.6, 0.3};
+                            },
+                            // a window the suction never leaves: no onset could be seen
+                            +[](PreparationSettings& s) {
+                              s.reference_window = {0.3, 1.4};
                             },
                             +[](PreparationSettings& s) { s.progress_every = 0; }}) {
     PreparationSettings s;
