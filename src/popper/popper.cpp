@@ -126,11 +126,13 @@ Popper::Popper(const config::Case& c, const Numerics& n, const PreparationSettin
   container_.mass = grounding_mass();
   const auto& st = settings_;
   if (!(st.buckle_factor > 0.0 && st.ramp > 0.0 && st.max_wait >= 0.0 && st.progress_every > 0 &&
-        st.onset_sample_every > 0 && st.onset_factor > 1.0 && st.reference_window[0] >= 0.0 &&
-        st.reference_window[1] > st.reference_window[0] &&
+        st.fast_to >= 0.0 && st.fast_to < st.buckle_factor && st.fast_ramp >= 0.0 &&
+        st.fast_ramp < st.ramp && st.onset_sample_every > 0 && st.onset_factor > 1.0 &&
+        st.reference_window[0] >= 0.0 && st.reference_window[1] > st.reference_window[0] &&
         st.reference_window[1] < st.buckle_factor)) {
     throw std::invalid_argument(
         "PreparationSettings: buckle_factor and ramp must be positive, max_wait not negative, "
+        "fast_to from 0 to below buckle_factor, fast_ramp from 0 to below ramp, "
         "progress_every and onset_sample_every at least 1, onset_factor above 1, the reference "
         "window an interval of pressures from 0 up that ends below buckle_factor");
   }
@@ -184,6 +186,14 @@ void SnapOnset::sample(double t, double V, double p) {
              rate > factor_ * reference_sum_ / reference_count_) {
     onset_ = p;
   }
+}
+
+double Popper::buckling_suction(double t, double pc) const {
+  const auto& st = settings_;
+  const double p_fast = st.fast_to * pc, p_buckle = st.buckle_factor * pc;
+  if (t < st.fast_ramp) return p_fast * t / st.fast_ramp;
+  return p_fast +
+         (p_buckle - p_fast) * std::min(1.0, (t - st.fast_ramp) / (st.ramp - st.fast_ramp));
 }
 
 double Popper::zoelly_pc() const {
@@ -246,7 +256,7 @@ bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
   SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
   m.start_held(numerics_.prep_damping);
   while (m.time() < st.ramp + st.max_wait) {
-    const double p = p_buckle * std::min(1.0, m.time() / st.ramp);
+    const double p = buckling_suction(m.time(), pc);
     gas_.hold(p);
     m.step();
     if (!onset.pressure() && m.steps() % st.onset_sample_every == 0) {

@@ -96,8 +96,14 @@ struct PreparationSettings {
   // held at most max_wait for the shell to invert. Inverted: the apex above the outer rim and the
   // shell's kinetic energy below settled_energy per kg of shell.
   double buckle_factor = 1.4;
-  double ramp = 0.02;            // [s]
-  double max_wait = 0.1;         // [s]
+  double ramp = 0.02;     // [s]
+  double max_wait = 0.1;  // [s]
+  // Optionally the ramp has a fast first leg: the suction reaches fast_to p_c in fast_ramp, then
+  // rises evenly to buckle_factor p_c at ramp. 0 and 0 (the protocol's): one even ramp. A slow
+  // ramp that measures the buckling pressure starts this way to skip the pressures where nothing
+  // happens (the snap-through validation).
+  double fast_to = 0.0;
+  double fast_ramp = 0.0;        // [s]
   double settled_energy = 1e-5;  // [J/kg]
   // The buckling pressure is the suction at the onset of the snap (SnapOnset): the cavity volume,
   // sampled every onset_sample_every steps, shrinks faster than onset_factor times its mean rate
@@ -166,6 +172,8 @@ class Popper {
   // buckle() (a second call throws std::logic_error); after buckle() it cannot be released.
   Preparation buckle(const Progress& progress = {});
   [[nodiscard]] const PreparationSettings& preparation_settings() const { return settings_; }
+  // The suction of phase 1 at time t [s] after it began, Zoelly's p_c given [Pa].
+  [[nodiscard]] double buckling_suction(double t, double pc) const;
   // t = 0: opens the valve; from here on the run is physical (no damping).
   void release();
   // One physical step.

@@ -103,11 +103,36 @@ TEST(Protocol, SettingsThatCannotRunAreRefused) {
                             +[](PreparationSettings& s) {
                               s.reference_window = {0.3, 1.4};
                             },
+                            +[](PreparationSettings& s) { s.fast_to = 1.4; },
+                            +[](PreparationSettings& s) { s.fast_ramp = 0.02; },
                             +[](PreparationSettings& s) { s.progress_every = 0; }}) {
     PreparationSettings s;
     broken(s);
     EXPECT_THROW(Popper(c, n, s), std::invalid_argument);
   }
+}
+
+// The buckling ramp: one even ramp by default, or a fast first leg then an even one.
+TEST(Protocol, BucklingRampWithAndWithoutAFastLeg) {
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = config::Resolution::Coarse;
+  const auto n = resolve_numerics(c);
+  const double pc = 1000.0;
+  const Popper even(c, n);
+  EXPECT_EQ(even.buckling_suction(0.0, pc), 0.0);
+  EXPECT_DOUBLE_EQ(even.buckling_suction(0.01, pc), 700.0);  // 1.4 p_c over 20 ms
+  EXPECT_DOUBLE_EQ(even.buckling_suction(0.05, pc), 1400.0);
+  PreparationSettings s;
+  s.buckle_factor = 1.3;
+  s.fast_to = 0.6;
+  s.fast_ramp = 0.01;
+  s.ramp = 0.15;
+  const Popper two_legs(c, n, s);
+  EXPECT_DOUBLE_EQ(two_legs.buckling_suction(0.005, pc), 300.0);
+  EXPECT_DOUBLE_EQ(two_legs.buckling_suction(0.01, pc), 600.0);
+  EXPECT_DOUBLE_EQ(two_legs.buckling_suction(0.08, pc), 950.0);  // 5 p_c per second
+  EXPECT_DOUBLE_EQ(two_legs.buckling_suction(0.2, pc), 1300.0);
 }
 
 }  // namespace
