@@ -68,5 +68,7 @@ int main(int argc, char** argv) {
       (t[0] + t[1] + t[2] + t[3]) / kSteps);
   std::printf("whole steps: fastest %.3f ms, 10th percentile %.3f ms, median %.3f ms\n", whole[0],
               whole[kSteps / 10], whole[kSteps / 2]);
+  std::printf("the grid's blocks made again in %ld of %d steps (%zu blocks)\n",
+              s.grid().full_rebuilds(), kSteps, s.grid().num_blocks());
   return 0;
 }

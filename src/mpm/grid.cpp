@@ -106,6 +106,7 @@ void SparseGrid::rebuild(const core::Points& x) {
     same = same && keys[p] == home_key_[p] && reach[p] == home_reach_[p];
   }
   if (!same) {
+    ++full_rebuilds_;
     block_index_.clear();
     block_coords_.clear();
     home_.resize(np);

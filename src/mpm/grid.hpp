@@ -69,6 +69,8 @@ class SparseGrid {
     return {order_.data() + start_[h], order_.data() + start_[h + 1]};
   }
   [[nodiscard]] std::size_t num_blocks() const { return block_coords_.size(); }
+  // How many calls of rebuild() made the blocks and groups again (the others kept them).
+  [[nodiscard]] long full_rebuilds() const { return full_rebuilds_; }
 
  private:
   int block_id(std::int64_t bx, std::int64_t by, std::int64_t bz);
@@ -88,6 +90,7 @@ class SparseGrid {
   std::vector<int> order_, start_;  // particles sorted by home block
   std::array<std::vector<int>, 8> colour_homes_;
   std::array<std::vector<int>, 8> colour_tasks_;  // offsets into colour_homes_
+  long full_rebuilds_ = 0;
 };
 
 // Quadratic B-spline weights of a particle at x (in grid units) with respect to the nodes

@@ -82,5 +82,22 @@ TEST(Grid, ColoursNeverShareANodeAndARebuildEqualsAFreshBuild) {
   }
 }
 
+// The blocks are kept while no particle changes block or reach, and made again otherwise.
+TEST(Grid, KeepsItsBlocksUntilAParticleChangesBlock) {
+  const double dx = 0.001;
+  core::Points x;
+  x.push_back(0.0101, 0.0101, 0.0101);  // grid units 10.1: stencil from node 9, local index 1
+  x.push_back(0.0205, 0.0101, 0.0101);
+  SparseGrid g(dx);
+  g.rebuild(x);
+  EXPECT_EQ(g.full_rebuilds(), 1);
+  x.x[0] += 0.1 * dx;  // within its block and reach
+  g.rebuild(x);
+  EXPECT_EQ(g.full_rebuilds(), 1);
+  x.x[0] += 4.0 * dx;  // into the next block
+  g.rebuild(x);
+  EXPECT_EQ(g.full_rebuilds(), 2);
+}
+
 }  // namespace
 }  // namespace snapjump::mpm
