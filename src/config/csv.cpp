@@ -1,5 +1,7 @@
 #include "config/csv.hpp"
 
+#include <algorithm>
+
 #include "config/text.hpp"
 
 namespace snapjump::text {
@@ -24,6 +26,18 @@ std::string_view line_at(std::string_view text, std::size_t i) {
   return text.substr(i, end == std::string_view::npos ? std::string_view::npos : end - i);
 }
 
+// From i (the start of a line), the start of the first line a record can start on, or the end of
+// the text; `line` counts the lines passed.
+std::size_t past_skipped_lines(std::string_view text, std::size_t i, std::size_t& line) {
+  while (i < text.size()) {
+    const auto l = line_at(text, i);
+    if (!skipped_line(l)) break;
+    i = std::min(text.size(), i + l.size() + 1);  // and its line break, if it has one
+    ++line;
+  }
+  return i;
+}
+
 }  // namespace
 
 CsvReader::CsvReader(std::string_view text, char separator)
@@ -39,11 +53,7 @@ bool CsvReader::next(CsvRecord& record) {
       ++i;
     return i;
   };
-  while (i_ < n && skipped_line(line_at(text, i_))) {
-    i_ += line_at(text, i_).size();
-    if (i_ < n) ++i_;  // the line break
-    ++line_;
-  }
+  i_ = past_skipped_lines(text, i_, line_);
   if (i_ >= n) return false;
   record.cells.clear();
   record.line = line_;
@@ -97,15 +107,8 @@ bool CsvReader::next(CsvRecord& record) {
 
 char detect_separator(std::string_view text) {
   text = without_byte_order_mark(text);
-  std::string_view header;
-  for (std::size_t i = 0; i < text.size();) {
-    const auto line = line_at(text, i);
-    if (!skipped_line(line)) {
-      header = line;
-      break;
-    }
-    i += line.size() + 1;
-  }
+  std::size_t lines = 0;
+  const auto header = line_at(text, past_skipped_lines(text, 0, lines));
   std::size_t commas = 0, semicolons = 0, tabs = 0;
   bool quoted = false;
   for (const char ch : header) {

@@ -211,23 +211,18 @@ void Popper::begin_preparation(const char* call) {
 Preparation Popper::buckle(const Progress& progress) {
   begin_preparation("buckle");
   Preparation prep;
-  const double pc = zoelly_pc();
-  if (buckle(prep, progress, pc)) {
-    prep.message =
-        fmt::format("inverted under {:.0f} Pa ({:.2f} p_c), {}", settings_.buckle_factor * pc,
-                    settings_.buckle_factor, describe_onset(prep, pc, settings_.ramp));
-  }
+  buckle(prep, progress, zoelly_pc());
   return prep;
 }
 
-std::string Popper::describe_onset(const Preparation& prep, double pc, double ramp) {
+std::string Popper::describe_onset(const Preparation& prep, double pc) const {
   if (!prep.buckling_pressure) {
     return "onset of the snap not seen (the cavity never shrank onset_factor times faster than "
            "while the suction crossed the reference window)";
   }
   // Under a fast ramp the onset lags the pressure: the words say which ramp it was.
   return fmt::format("snap onset at {:.0f} Pa ({:.3f} p_c, suction ramped over {:.0f} ms)",
-                     *prep.buckling_pressure, *prep.buckling_pressure / pc, 1e3 * ramp);
+                     *prep.buckling_pressure, *prep.buckling_pressure / pc, 1e3 * settings_.ramp);
 }
 
 Preparation Popper::prepare(const Progress& progress) {
@@ -237,12 +232,10 @@ Preparation Popper::prepare(const Progress& progress) {
   if (!buckle(prep, progress, pc)) return prep;
   if (!set_delta_p_j(prep, progress, pc)) return prep;
   ground(prep, progress);
-  const double p_buckle = settings_.buckle_factor * pc;
-  prep.message = fmt::format(
-      "inverted under {:.0f} Pa ({:.2f} p_c), {}, held at delta_p_j = {:.0f} Pa ({:.2f} p_c), "
-      "grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",
-      p_buckle, p_buckle / pc, describe_onset(prep, pc, settings_.ramp), delta_p_j_,
-      delta_p_j_ / pc, 1e3 * model_->time(), prep.plate_force, case_.popper.net_weight);
+  prep.message += fmt::format(
+      ", held at delta_p_j = {:.0f} Pa ({:.2f} p_c), grounded in {:.0f} ms: plate force {:.3f} N "
+      "for a net weight of {:.3f} N",
+      delta_p_j_, delta_p_j_ / pc, 1e3 * model_->time(), prep.plate_force, case_.popper.net_weight);
   return prep;
 }
 
@@ -268,6 +261,8 @@ bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
       if (progress) progress("buckle", m.time(), m.time() / (st.ramp + st.max_wait));
       if (inverted() && m.kinetic_energy() < st.settled_energy * shell_mass_) {
         prep.inverted = true;
+        prep.message = fmt::format("inverted under {:.0f} Pa ({:.2f} p_c), {}", p_buckle,
+                                   st.buckle_factor, describe_onset(prep, pc));
         return true;
       }
     }

@@ -82,7 +82,8 @@ struct Preparation {
   bool inverted = false;  // the shell inverted under the buckling pressure
   bool held = false;      // and stayed inverted at delta_p_j
   // Pressure at the onset of the snap [Pa] (PreparationSettings: the onset rule); nothing when
-  // the rule could not see it (a ramp too fast to sample the reference window).
+  // the rule did not see one (no sample shrank the cavity onset_factor times faster than the
+  // reference window's mean).
   std::optional<double> buckling_pressure;
   double plate_force = 0.0;  // after grounding, mean plate force over the settling's end [N]
   std::string message;       // what happened, in words
@@ -209,14 +210,15 @@ class Popper {
   [[nodiscard]] double wire_tension() const;
   void advance_gas();
   // The phases of prepare(): each returns false, with prep.message saying why, when the popper
-  // cannot go on to the next.
+  // cannot go on to the next. buckle() puts the words of its outcome in prep.message on success
+  // too, and prepare() adds those of the later phases.
   bool buckle(Preparation& prep, const Progress& progress, double pc);
   bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc);
   void ground(Preparation& prep, const Progress& progress);
   // The protocol's one test of "inverted": the apex above the outer rim.
   [[nodiscard]] bool inverted() const { return model_->apex_z() > model_->outer_rim_z(); }
-  // The buckling pressure in words, with the ramp [s] it was measured under.
-  static std::string describe_onset(const Preparation& prep, double pc, double ramp);
+  // The buckling pressure in words, with the ramp it was measured under.
+  [[nodiscard]] std::string describe_onset(const Preparation& prep, double pc) const;
   // Zoelly's p_c of the case's shell [Pa].
   [[nodiscard]] double zoelly_pc() const;
   // Marks the preparation begun; throws std::logic_error when it had begun already (or a state
