@@ -34,6 +34,7 @@ const fem::Body& cap(int scale) {
     spec.element_size *= std::pow(std::sqrt(8.0), -scale);
     auto m = mesh::make_cap_mesh(spec);
     mesh::translate_z(m, c.shell.R + c.shell.h);
+    mesh::sort_along_curve(m);  // as the popper does
     b = std::make_unique<fem::Body>(
         std::move(m), fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
   }

@@ -29,15 +29,6 @@ using popper::put;
 
 }  // namespace
 
-std::uint64_t fnv1a64(std::string_view bytes) {
-  std::uint64_t h = 14695981039346656037ULL;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return h;
-}
-
 std::string encode_checkpoint(const popper::Popper& pop, const LoopState& s) {
   std::ostringstream f(std::ios::binary);
   pop.save_state(f);

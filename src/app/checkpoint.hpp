@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "popper/popper.hpp"
+#include "popper/state_io.hpp"
 
 namespace snapjump::app {
 
@@ -30,8 +31,7 @@ class CheckpointError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// 64-bit FNV-1a of the bytes.
-std::uint64_t fnv1a64(std::string_view bytes);
+using popper::fnv1a64;
 
 // The checkpoint's bytes: the popper's state, the loop's, then a trailer with the checksum of
 // everything before it.

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <map>
+#include <utility>
+#include <vector>
 
 #include "mesh/tet10.hpp"
 
@@ -108,6 +111,73 @@ void check_shell_sets(const Mesh& m) {
 
 void translate_z(Mesh& m, double dz) {
   for (auto& z : m.nodes.z) z += dz;
+}
+
+namespace {
+
+// Spreads the low 20 bits of v to every third bit.
+std::uint64_t spread_bits(std::uint64_t v) {
+  v &= 0xfffff;
+  v = (v | v << 32) & 0x1f00000000ffffULL;
+  v = (v | v << 16) & 0x1f0000ff0000ffULL;
+  v = (v | v << 8) & 0x100f00f00f00f00fULL;
+  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+  v = (v | v << 2) & 0x1249249249249249ULL;
+  return v;
+}
+
+// Orders the items (each a list of node numbers) by their lowest node; ties keep their order.
+template <typename Item>
+void sort_by_lowest_node(std::vector<Item>& items) {
+  std::stable_sort(items.begin(), items.end(), [](const Item& a, const Item& b) {
+    return *std::min_element(a.begin(), a.end()) < *std::min_element(b.begin(), b.end());
+  });
+}
+
+}  // namespace
+
+void sort_along_curve(Mesh& m) {
+  const std::size_t n = m.nodes.size();
+  if (n == 0) return;
+  const auto [x0, x1] = std::minmax_element(m.nodes.x.begin(), m.nodes.x.end());
+  const auto [y0, y1] = std::minmax_element(m.nodes.y.begin(), m.nodes.y.end());
+  const auto [z0, z1] = std::minmax_element(m.nodes.z.begin(), m.nodes.z.end());
+  // One cell size on all three axes (the curve's cells are cubes), 2^20 cells across the widest.
+  constexpr double kCells = 1048575.0;
+  const double extent = std::max({*x1 - *x0, *y1 - *y0, *z1 - *z0});
+  const double scale = extent > 0.0 ? kCells / extent : 0.0;
+  const auto cell = [scale](double v, double lo) {
+    return static_cast<std::uint64_t>(std::floor((v - lo) * scale));
+  };
+  std::vector<std::pair<std::uint64_t, int>> by_curve(n);
+  for (std::size_t a = 0; a < n; ++a) {
+    by_curve[a] = {spread_bits(cell(m.nodes.x[a], *x0)) << 2 |
+                       spread_bits(cell(m.nodes.y[a], *y0)) << 1 |
+                       spread_bits(cell(m.nodes.z[a], *z0)),
+                   static_cast<int>(a)};
+  }
+  std::sort(by_curve.begin(), by_curve.end());  // (key, old number): ties in their old order
+  std::vector<int> renumber(n);
+  Points nodes;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto a = static_cast<std::size_t>(by_curve[i].second);
+    renumber[a] = static_cast<int>(i);
+    nodes.push_back(m.nodes.x[a], m.nodes.y[a], m.nodes.z[a]);
+  }
+  m.nodes = std::move(nodes);
+  for (auto& tet : m.tets) {
+    for (int& a : tet) a = renumber[static_cast<std::size_t>(a)];
+  }
+  for (auto& face : m.inner_faces) {
+    for (int& a : face) a = renumber[static_cast<std::size_t>(a)];
+  }
+  for (auto* set : {&m.clamped, &m.outer}) {
+    for (int& a : *set) a = renumber[static_cast<std::size_t>(a)];
+    std::sort(set->begin(), set->end());
+  }
+  if (m.apex >= 0) m.apex = renumber[static_cast<std::size_t>(m.apex)];
+  sort_by_lowest_node(m.tets);
+  sort_by_lowest_node(m.inner_faces);
 }
 
 std::vector<std::array<int, 6>> boundary_faces(const Mesh& m) {

@@ -43,6 +43,13 @@ void check_shell_sets(const Mesh& m);
 // Shifts every node by (0, 0, dz).
 void translate_z(Mesh& m, double dz);
 
+// Renumbers the nodes along a Morton (z-order) curve of their positions, and orders the
+// tetrahedra and inner faces by their lowest node in that numbering; the node sets keep their
+// ascending order. Nodes near each other in space are then near each other in memory, as the
+// background grid visits them, and a thread that owns a range of nodes owns a region of space.
+// The mesh is the same body: only the numbering changes (ties keep their old order).
+void sort_along_curve(Mesh& m);
+
 // Faces of the tetrahedra that belong to no other tetrahedron (the boundary), as 6-node
 // triangles oriented outward.
 std::vector<std::array<int, 6>> boundary_faces(const Mesh& m);

@@ -129,7 +129,13 @@ void Stepper::update_particle_velocities() {
 }
 
 void Stepper::particle_to_grid() {
-  grid_.rebuild(p_.x);
+  rebuild_grid();
+  scatter_to_grid();
+}
+
+void Stepper::rebuild_grid() { grid_.rebuild(p_.x); }
+
+void Stepper::scatter_to_grid() {
   for (int colour = 0; colour < 8; ++colour) {
     const auto& homes = grid_.homes_of_colour(colour);
     const auto& tasks = grid_.tasks_of_colour(colour);

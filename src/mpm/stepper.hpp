@@ -79,7 +79,9 @@ class Stepper {
 
   // The stages of step(), in order (public for tests and probes).
   void update_particle_velocities();  // 1. v' = v + dt f / m
-  void particle_to_grid();            // 2. APIC transfer of mass and momentum
+  void particle_to_grid();            // 2. APIC transfer of mass and momentum: 2a then 2b
+  void rebuild_grid();                //   2a. the grid's blocks where the particles are, zeroed
+  void scatter_to_grid();             //   2b. the particles' mass and momentum onto the nodes
   void apply_grid_rules();            // 3. clamp, plate, ...
   void grid_to_particle();            // 4. velocities, affine matrices, positions
   void advance_rigid_bodies();        // 5.

@@ -4,6 +4,7 @@
 // do there; from the grounding on, the MPM stepper.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 
 #include "fem/body.hpp"
@@ -57,6 +58,7 @@ class MpmShell final : public ShellModel {
 
   void save_state(std::ostream& out) const override;
   void load_state(std::istream& in, core::RigidBody& container, double mu) override;
+  [[nodiscard]] std::uint64_t node_order_fingerprint() const;
   void write_snapshot(const std::filesystem::path& path, double t) const override;
   [[nodiscard]] double outer_rim_radius() const override;
 

@@ -331,7 +331,9 @@ void Popper::ground(Preparation& prep, const Progress& progress) {
 namespace {
 
 // Version 2: J_n referred to the undeformed popper (version 1 referred it to the release).
-constexpr char kStateMagic[] = "snapjump-popper-state-2";
+// Version 3: the 3D shell's particles in the order of mesh::sort_along_curve, after a fingerprint
+// of that order.
+constexpr char kStateMagic[] = "snapjump-popper-state-3";
 
 }  // namespace
 

@@ -7,9 +7,19 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace snapjump::popper {
+
+// 64-bit FNV-1a of the bytes.
+inline std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t h = 14695981039346656037ULL) {
+  for (const unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return h;
+}
 
 template <typename T>
 void put(std::ostream& out, const T& v) {

@@ -2,13 +2,19 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <numbers>
+#include <set>
 #include <sstream>
+#include <vector>
 
 #include "mesh/cap_mesher.hpp"
 #include "mesh/msh_reader.hpp"
@@ -60,6 +66,65 @@ TEST(CapMesh, NodeSetsLieWhereTheyShould) {
     EXPECT_GE(radius(m, static_cast<int>(a)), kR - kH / 2 - 1e-12);
     EXPECT_LE(polar(m, static_cast<int>(a)), kPhi + 1e-9);
   }
+}
+
+// The curve order renumbers the same body: every element, face and node set is where it was,
+// and nodes that follow each other in the new numbering lie closer together.
+TEST(CapMesh, SortingAlongTheCurveRenumbersTheSameBody) {
+  const auto& m = cap();
+  Mesh s = m;
+  sort_along_curve(s);
+  ASSERT_EQ(s.nodes.size(), m.nodes.size());
+  EXPECT_NO_THROW(check_mesh(s));
+  EXPECT_NO_THROW(check_shell_sets(s));
+  using Position = std::array<double, 3>;
+  const auto at = [](const Mesh& mesh, int a) {
+    const auto i = static_cast<std::size_t>(a);
+    return Position{mesh.nodes.x[i], mesh.nodes.y[i], mesh.nodes.z[i]};
+  };
+  // Every position once in each numbering.
+  std::map<Position, int> before, after;
+  for (std::size_t a = 0; a < m.nodes.size(); ++a) {
+    before[at(m, static_cast<int>(a))] = static_cast<int>(a);
+    after[at(s, static_cast<int>(a))] = static_cast<int>(a);
+  }
+  ASSERT_EQ(before.size(), m.nodes.size());
+  ASSERT_EQ(after.size(), m.nodes.size());
+  for (const auto& [x, a] : after) EXPECT_EQ(before.count(x), 1u) << "node " << a;
+  // Items as the positions of their nodes, in their local order: the same multiset in both.
+  const auto shapes = [&](const Mesh& mesh, const auto& items) {
+    std::multiset<std::vector<Position>> out;
+    for (const auto& item : items) {
+      std::vector<Position> shape;
+      for (int a : item) shape.push_back(at(mesh, a));
+      out.insert(shape);
+    }
+    return out;
+  };
+  EXPECT_EQ(shapes(s, s.tets), shapes(m, m.tets));
+  EXPECT_EQ(shapes(s, s.inner_faces), shapes(m, m.inner_faces));
+  const auto positions = [&](const Mesh& mesh, const std::vector<int>& set) {
+    std::set<Position> out;
+    for (int a : set) out.insert(at(mesh, a));
+    return out;
+  };
+  EXPECT_EQ(positions(s, s.clamped), positions(m, m.clamped));
+  EXPECT_EQ(positions(s, s.outer), positions(m, m.outer));
+  EXPECT_TRUE(std::is_sorted(s.clamped.begin(), s.clamped.end()));
+  EXPECT_TRUE(std::is_sorted(s.outer.begin(), s.outer.end()));
+  EXPECT_EQ(at(s, s.apex), at(m, m.apex));
+  const auto mean_step = [](const Mesh& mesh) {
+    double sum = 0.0;
+    for (std::size_t a = 1; a < mesh.nodes.size(); ++a) {
+      sum +=
+          std::hypot(mesh.nodes.x[a] - mesh.nodes.x[a - 1], mesh.nodes.y[a] - mesh.nodes.y[a - 1],
+                     mesh.nodes.z[a] - mesh.nodes.z[a - 1]);
+    }
+    return sum / static_cast<double>(mesh.nodes.size() - 1);
+  };
+  std::printf("mean distance between consecutive nodes: %.3g mm before, %.3g mm after\n",
+              1e3 * mean_step(m), 1e3 * mean_step(s));
+  EXPECT_LT(mean_step(s), mean_step(m));
 }
 
 // gmsh sets the OpenMP thread count to its own option when it starts; meshing must leave the

@@ -3,13 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "app/checkpoint.hpp"
 #include "app/cli.hpp"
 #include "app/run.hpp"
 
@@ -45,6 +49,26 @@ TEST(RunResume, PausedAndResumedRunMatchesAStraightOne) {
             0);
   EXPECT_TRUE(std::filesystem::exists(paused / "checkpoint.bin"));
   EXPECT_NE(read(paused / "series.csv"), read(straight / "series.csv"));  // really stopped early
+  {
+    // A checkpoint whose particles follow another numbering of the mesh's nodes (a build before
+    // the curve order, say) is refused, even with a valid checksum.
+    const auto other = base / "other";
+    std::filesystem::copy(paused, other, std::filesystem::copy_options::recursive);
+    std::string bytes = read(paused / "checkpoint.bin");
+    constexpr std::size_t kFingerprint = sizeof("snapjump-popper-state-3");
+    constexpr std::size_t kTrailer = sizeof("snapjump-checksum-1") + sizeof(std::uint64_t);
+    ASSERT_GT(bytes.size(), kFingerprint + kTrailer);
+    bytes[kFingerprint] = static_cast<char>(bytes[kFingerprint] ^ 1);
+    const std::uint64_t sum = fnv1a64(std::string_view(bytes).substr(0, bytes.size() - kTrailer));
+    std::memcpy(bytes.data() + bytes.size() - sizeof sum, &sum, sizeof sum);
+    std::ofstream(other / "checkpoint.bin", std::ios::binary) << bytes;
+    std::vector<const char*> argv = {"snapjump", "run", "--resume", nullptr, "--quiet"};
+    const std::string dir = other.string();
+    argv[3] = dir.c_str();
+    std::ostringstream out, err;
+    EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
+    EXPECT_NE(err.str().find("another numbering of its nodes"), std::string::npos) << err.str();
+  }
   ASSERT_EQ(run({"run", "--resume", paused.string(), "--quiet"}), 0);
   EXPECT_EQ(read(paused / "series.csv"), read(straight / "series.csv"));
   EXPECT_EQ(read(paused / "run.pvd"), read(straight / "run.pvd"));
