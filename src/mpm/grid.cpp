@@ -85,11 +85,18 @@ void SparseGrid::rebuild(const core::Points& x) {
   blocks.resize(np);
   reach.resize(np);
   local_.resize(np);
-  bool same = home_key_.size() == np && !block_coords_.empty();
-  for (std::size_t p = 0; p < np; ++p) {
+  const bool had_blocks = home_key_.size() == np && !block_coords_.empty();
+  bool same = had_blocks;
+  const long n = static_cast<long>(np);
+  long bad = n;  // the lowest particle with a non-finite position (n: none)
+#pragma omp parallel for schedule(static) reduction(&& : same) reduction(min : bad)
+  for (long i = 0; i < n; ++i) {
+    const auto p = static_cast<std::size_t>(i);
     const double gx = x.x[p] * inv_dx, gy = x.y[p] * inv_dx, gz = x.z[p] * inv_dx;
     if (!std::isfinite(gx + gy + gz)) {
-      throw std::runtime_error(fmt::format("particle {} has a non-finite position", p));
+      bad = std::min(bad, i);
+      same = false;
+      continue;
     }
     const std::int64_t b[3] = {static_cast<std::int64_t>(std::floor(gx - 0.5)),
                                static_cast<std::int64_t>(std::floor(gy - 0.5)),
@@ -103,89 +110,164 @@ void SparseGrid::rebuild(const core::Points& x) {
     reach[p] = static_cast<std::uint8_t>((local_[p][0] >= kBlock - 2 ? 1 : 0) |
                                          (local_[p][1] >= kBlock - 2 ? 2 : 0) |
                                          (local_[p][2] >= kBlock - 2 ? 4 : 0));
-    same = same && keys[p] == home_key_[p] && reach[p] == home_reach_[p];
+    // (Each thread's `same` starts true: had_blocks guards the last build's arrays.)
+    same = same && had_blocks && keys[p] == home_key_[p] && reach[p] == home_reach_[p];
   }
-  if (!same) {
-    ++full_rebuilds_;
-    block_index_.clear();
-    block_coords_.clear();
-    home_.resize(np);
-    // Home blocks, in order of first appearance: the first blocks made, so until the Morton
-    // renumbering below a home's number is its block id. Block ids (the order of the blocks in
-    // memory, and of the rules' sums over them) depend on the particles' positions only, never on
-    // earlier steps, so a resumed run repeats a straight one bit for bit. A particle in the same
-    // block as the one before needs no lookup.
-    std::uint64_t last_key = 0;
-    int last_id = -1;
-    for (std::size_t p = 0; p < np; ++p) {
-      if (last_id < 0 || keys[p] != last_key) {
-        last_id = block_id(blocks[p][0], blocks[p][1], blocks[p][2]);
-        last_key = keys[p];
-      }
-      home_[p] = last_id;
-    }
-    // Renumbered along a Morton curve of their coordinates, so that homes near each other in
-    // space are near each other in the order of the transfers (and share cached nodes).
-    const std::size_t nh = block_coords_.size();
-    std::vector<std::pair<std::uint64_t, int>> by_curve(nh);
-    for (std::size_t h = 0; h < nh; ++h) {
-      by_curve[h] = {morton_key(block_coords_[h]), static_cast<int>(h)};
-    }
-    std::sort(by_curve.begin(), by_curve.end());
-    std::vector<int> renumber(nh);  // block id -> home number; by_curve[h].second is the inverse
-    for (std::size_t h = 0; h < nh; ++h) renumber[by_curve[h].second] = static_cast<int>(h);
-    // The neighbour blocks that some particle of each home reaches (bit nb of needed[h]): every
-    // nb whose axes are among those a particle's stencil crosses.
-    std::vector<std::uint8_t> needed(nh, 0);
-    for (std::size_t p = 0; p < np; ++p) {
-      home_[p] = renumber[home_[p]];
-      needed[home_[p]] |= kSubsets[reach[p]];
-    }
-    // The +x, +y, +z neighbours that stencils reach, and the tasks of the parallel transfer:
-    // one task per cube of 4 x 4 x 4 home blocks, coloured by the parity of the cube's
-    // coordinates. A task writes into its cube and one block beyond on the + sides, so two
-    // tasks of one colour (a cube apart at least) never write the same node. Cubes of 4 blocks
-    // rather than single blocks: most nodes are then written within one task, while cached.
-    neighbours_.resize(nh);
-    for (auto& c : colour_homes_) c.clear();
-    for (auto& c : colour_tasks_) c.assign(1, 0);
-    std::array<std::array<std::int64_t, 3>, 8> last_cube{};
-    for (std::size_t h = 0; h < nh; ++h) {
-      const auto b = block_coords_[by_curve[h].second];
-      for (int nb = 0; nb < 8; ++nb) {
-        neighbours_[h][nb] =
-            (needed[h] >> nb & 1) != 0
-                ? block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1))
-                : -1;  // no stencil goes there
-      }
-      const std::array<std::int64_t, 3> cube = {b[0] >> kCubeShift, b[1] >> kCubeShift,
-                                                b[2] >> kCubeShift};
-      const int colour =
-          static_cast<int>((cube[0] & 1) | ((cube[1] & 1) << 1) | ((cube[2] & 1) << 2));
-      auto& homes = colour_homes_[colour];
-      // Homes of one cube are consecutive on the Morton curve.
-      if (!homes.empty() && cube != last_cube[colour]) {
-        colour_tasks_[colour].push_back(static_cast<int>(homes.size()));
-      }
-      homes.push_back(static_cast<int>(h));
-      last_cube[colour] = cube;
-    }
-    for (int c = 0; c < 8; ++c) {
-      if (!colour_homes_[c].empty()) {
-        colour_tasks_[c].push_back(static_cast<int>(colour_homes_[c].size()));
-      }
-    }
-    // Particles grouped by home block (counting sort).
-    start_.assign(nh + 1, 0);
-    for (std::size_t p = 0; p < np; ++p) ++start_[home_[p] + 1];
-    for (std::size_t h = 0; h < nh; ++h) start_[h + 1] += start_[h];
-    order_.resize(np);
-    std::vector<int> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t p = 0; p < np; ++p) order_[fill[home_[p]]++] = static_cast<int>(p);
-    home_key_ = keys;
-    home_reach_ = reach;
+  if (bad < n) {
+    throw std::runtime_error(fmt::format("particle {} has a non-finite position", bad));
   }
+  if (!same && !(had_blocks && regroup())) make_blocks();
+  zero_nodes();
+}
 
+// Particles that moved into another block that is already a home, or whose stencils reach
+// further into neighbours that are already made, are regrouped; the blocks stay. Every order the
+// transfers and rules sum in is then the one a fresh build would give: homes along the curve,
+// particles by number within a home, blocks in memory along the curve (blocks that no stencil
+// reaches any more hold no mass, and the rules skip massless nodes). False: a particle needs a
+// block that is not made, so the blocks must be made again.
+bool SparseGrid::regroup() {
+  const std::size_t np = home_key_.size();
+  for (std::size_t p = 0; p < np; ++p) {
+    if (scratch_keys_[p] == home_key_[p] && scratch_reach_[p] == home_reach_[p]) continue;
+    int h = home_[p];
+    if (scratch_keys_[p] != home_key_[p]) {
+      const auto it = block_index_.find(scratch_keys_[p]);
+      if (it == block_index_.end()) return false;
+      h = home_of_block_[static_cast<std::size_t>(it->second)];
+      if (h < 0) return false;
+    }
+    const std::uint8_t reaches = kSubsets[scratch_reach_[p]];
+    for (int nb = 1; nb < 8; ++nb) {
+      if ((reaches >> nb & 1) != 0 && neighbours_[static_cast<std::size_t>(h)][nb] < 0) {
+        return false;
+      }
+    }
+    home_[p] = h;
+    home_key_[p] = scratch_keys_[p];
+    home_reach_[p] = scratch_reach_[p];
+  }
+  group_particles();
+  return true;
+}
+
+void SparseGrid::make_blocks() {
+  const std::size_t np = scratch_keys_.size();
+  const auto& keys = scratch_keys_;
+  const auto& blocks = scratch_blocks_;
+  const auto& reach = scratch_reach_;
+  ++full_rebuilds_;
+  block_index_.clear();
+  block_coords_.clear();
+  home_.resize(np);
+  // Home blocks, in order of first appearance: the first blocks made, so until the Morton
+  // renumbering below a home's number is its block id. A particle in the same block as the one
+  // before needs no lookup.
+  std::uint64_t last_key = 0;
+  int last_id = -1;
+  for (std::size_t p = 0; p < np; ++p) {
+    if (last_id < 0 || keys[p] != last_key) {
+      last_id = block_id(blocks[p][0], blocks[p][1], blocks[p][2]);
+      last_key = keys[p];
+    }
+    home_[p] = last_id;
+  }
+  // Renumbered along a Morton curve of their coordinates, so that homes near each other in
+  // space are near each other in the order of the transfers (and share cached nodes).
+  const std::size_t nh = block_coords_.size();
+  std::vector<std::pair<std::uint64_t, int>> by_curve(nh);
+  for (std::size_t h = 0; h < nh; ++h) {
+    by_curve[h] = {morton_key(block_coords_[h]), static_cast<int>(h)};
+  }
+  std::sort(by_curve.begin(), by_curve.end());
+  std::vector<int> renumber(nh);  // block id -> home number; by_curve[h].second is the inverse
+  for (std::size_t h = 0; h < nh; ++h) renumber[by_curve[h].second] = static_cast<int>(h);
+  // The neighbour blocks that some particle of each home reaches (bit nb of needed[h]): every
+  // nb whose axes are among those a particle's stencil crosses.
+  std::vector<std::uint8_t> needed(nh, 0);
+  for (std::size_t p = 0; p < np; ++p) {
+    home_[p] = renumber[home_[p]];
+    needed[home_[p]] |= kSubsets[reach[p]];
+  }
+  // The +x, +y, +z neighbours that stencils reach (blocks made here get the next ids), and
+  // the tasks of the parallel transfer: one task per cube of 4 x 4 x 4 home blocks, coloured
+  // by the parity of the cube's coordinates. A task writes into its cube and one block beyond
+  // on the + sides, so two tasks of one colour (a cube apart at least) never write the same
+  // node. Cubes of 4 blocks rather than single blocks: most nodes are then written within one
+  // task, while cached.
+  neighbours_.resize(nh);
+  for (auto& c : colour_homes_) c.clear();
+  for (auto& c : colour_tasks_) c.assign(1, 0);
+  std::array<std::array<std::int64_t, 3>, 8> last_cube{};
+  for (std::size_t h = 0; h < nh; ++h) {
+    const auto b = block_coords_[by_curve[h].second];
+    for (int nb = 0; nb < 8; ++nb) {
+      neighbours_[h][nb] =
+          (needed[h] >> nb & 1) != 0
+              ? block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1))
+              : -1;  // no stencil goes there
+    }
+    const std::array<std::int64_t, 3> cube = {b[0] >> kCubeShift, b[1] >> kCubeShift,
+                                              b[2] >> kCubeShift};
+    const int colour =
+        static_cast<int>((cube[0] & 1) | ((cube[1] & 1) << 1) | ((cube[2] & 1) << 2));
+    auto& homes = colour_homes_[colour];
+    // Homes of one cube are consecutive on the Morton curve.
+    if (!homes.empty() && cube != last_cube[colour]) {
+      colour_tasks_[colour].push_back(static_cast<int>(homes.size()));
+    }
+    homes.push_back(static_cast<int>(h));
+    last_cube[colour] = cube;
+  }
+  // The blocks laid out in memory along the curve too, so that a thread given a stretch of
+  // the curve (tasks, homes, the zeroing below) works on a stretch of memory. The order depends
+  // on the set of blocks only.
+  const std::size_t nb_all = block_coords_.size();
+  std::vector<std::pair<std::uint64_t, int>> blocks_by_curve(nb_all);
+  for (std::size_t b = 0; b < nb_all; ++b) {
+    blocks_by_curve[b] = {morton_key(block_coords_[b]), static_cast<int>(b)};
+  }
+  std::sort(blocks_by_curve.begin(), blocks_by_curve.end());
+  std::vector<int> place(nb_all);  // block id -> its place in memory
+  std::vector<std::array<std::int64_t, 3>> coords(nb_all);
+  for (std::size_t k = 0; k < nb_all; ++k) {
+    const auto b = static_cast<std::size_t>(blocks_by_curve[k].second);
+    place[b] = static_cast<int>(k);
+    coords[k] = block_coords_[b];
+  }
+  block_coords_ = std::move(coords);
+  for (auto& nbs : neighbours_) {
+    for (int& b : nbs) {
+      if (b >= 0) b = place[static_cast<std::size_t>(b)];
+    }
+  }
+  for (int c = 0; c < 8; ++c) {
+    if (!colour_homes_[c].empty()) {
+      colour_tasks_[c].push_back(static_cast<int>(colour_homes_[c].size()));
+    }
+  }
+  home_of_block_.assign(block_coords_.size(), -1);
+  for (std::size_t h = 0; h < nh; ++h) {
+    home_of_block_[static_cast<std::size_t>(neighbours_[h][0])] = static_cast<int>(h);
+  }
+  for (auto& entry : block_index_) entry.second = place[static_cast<std::size_t>(entry.second)];
+  home_key_ = keys;
+  home_reach_ = reach;
+  group_particles();
+}
+
+// Particles grouped by home block (counting sort: by number within a home).
+void SparseGrid::group_particles() {
+  const std::size_t np = home_.size(), nh = neighbours_.size();
+  start_.assign(nh + 1, 0);
+  for (std::size_t p = 0; p < np; ++p) ++start_[home_[p] + 1];
+  for (std::size_t h = 0; h < nh; ++h) start_[h + 1] += start_[h];
+  order_.resize(np);
+  fill_.assign(start_.begin(), start_.end() - 1);
+  for (std::size_t p = 0; p < np; ++p) order_[fill_[home_[p]]++] = static_cast<int>(p);
+}
+
+void SparseGrid::zero_nodes() {
   const std::size_t nn = block_coords_.size() * kBlockNodes;
   nodes.resize(nn);
   tags.resize(nn);

@@ -140,7 +140,7 @@ void Stepper::scatter_to_grid() {
     const auto& homes = grid_.homes_of_colour(colour);
     const auto& tasks = grid_.tasks_of_colour(colour);
     const int nt = static_cast<int>(tasks.size()) - 1;
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(static)
     for (int task = 0; task < nt; ++task) {
       for (int k = tasks[task]; k < tasks[task + 1]; ++k) {
         for (const int i : grid_.particles_of(homes[k])) scatter(static_cast<std::size_t>(i));

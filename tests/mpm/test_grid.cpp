@@ -82,21 +82,44 @@ TEST(Grid, ColoursNeverShareANodeAndARebuildEqualsAFreshBuild) {
   }
 }
 
-// The blocks are kept while no particle changes block or reach, and made again otherwise.
-TEST(Grid, KeepsItsBlocksUntilAParticleChangesBlock) {
+// The blocks are kept while every particle's stencil lies in blocks already made (the particles
+// regrouped when one moves into another particle's block), and made again otherwise; kept or
+// made again, the grouping is a fresh grid's.
+TEST(Grid, KeepsItsBlocksWhileTheStencilsStayInThem) {
   const double dx = 0.001;
   core::Points x;
-  x.push_back(0.0101, 0.0101, 0.0101);  // grid units 10.1: stencil from node 9, local index 1
-  x.push_back(0.0205, 0.0101, 0.0101);
+  x.push_back(0.0101, 0.0101, 0.0101);  // grid units 10.1: stencil from node 9 (block 2, local 1)
+  x.push_back(0.0205, 0.0101, 0.0101);  // 20.5: from node 20 (block 5, local 0)
   SparseGrid g(dx);
+  const auto as_fresh = [&] {
+    SparseGrid fresh(dx);
+    fresh.rebuild(x);
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      EXPECT_EQ(stencil_nodes(g, i), stencil_nodes(fresh, i)) << "particle " << i;
+      const auto mine = g.particles_of(g.home_of(i)), theirs = fresh.particles_of(fresh.home_of(i));
+      EXPECT_EQ(std::vector<int>(mine.begin(), mine.end()),
+                std::vector<int>(theirs.begin(), theirs.end()));
+    }
+  };
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 1);
   x.x[0] += 0.1 * dx;  // within its block and reach
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 1);
-  x.x[0] += 4.0 * dx;  // into the next block
+  as_fresh();
+  x.x[0] = 0.0206;  // into particle 1's block, whose stencils reach no neighbour along x
+  g.rebuild(x);
+  EXPECT_EQ(g.full_rebuilds(), 1);
+  EXPECT_EQ(g.home_of(0), g.home_of(1));
+  as_fresh();
+  x.x[0] = 0.0227;  // 22.7: local index 2, reaching into block 6, which is not made
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 2);
+  as_fresh();
+  x.x[1] = 0.0405;  // into an empty block
+  g.rebuild(x);
+  EXPECT_EQ(g.full_rebuilds(), 3);
+  as_fresh();
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <memory>
 #include <numbers>
 
 #include "fem/body.hpp"
@@ -133,8 +134,11 @@ struct StepState {
 };
 
 // A cap under pressure, clamped to a container, moving down onto the frictional plate: every
-// stage of the MPM step (forces, transfers, clamp, plate) runs, for 150 steps.
-StepState run_steps(const fem::Body& shell, int threads, bool tune) {
+// stage of the MPM step (forces, transfers, clamp, plate) runs, for 150 steps. With restart_at > 0
+// the stepper is made again from its particles after that many steps (as a resumed run is), so
+// its grid starts afresh instead of keeping its blocks.
+StepState run_steps(const fem::Body& shell, int threads, bool tune, int restart_at = 0,
+                    long* kept_blocks = nullptr) {
   const parallel::ScopedThreadCount count(threads);
   hybrid::BodyForces forces(shell, 9.81, [](double) { return 2000.0; });
   auto particles = hybrid::particles_of(shell);
@@ -145,20 +149,31 @@ StepState run_steps(const fem::Body& shell, int threads, bool tune) {
   }
   mpm::StepperOptions o{shell.stable_time_step(0.3), 0.001, 0.5};
   o.tune_threads = tune;
-  mpm::Stepper s(std::move(particles), forces, o);
   mpm::RigidBody container;
   container.mass = 0.05;
   container.vz = -0.5;
   container.applied_force = -2.0;
-  s.add_rule(std::make_unique<mpm::ClampRule>(container));
-  auto& plate = dynamic_cast<mpm::PlateRule&>(s.add_rule(std::make_unique<mpm::PlateRule>(0.5)));
-  s.add_rigid_body(container);
+  const mpm::PlateRule* plate = nullptr;
+  const auto make = [&](mpm::Particles p) {
+    auto s = std::make_unique<mpm::Stepper>(std::move(p), forces, o);
+    s->add_rule(std::make_unique<mpm::ClampRule>(container));
+    plate = &dynamic_cast<mpm::PlateRule&>(s->add_rule(std::make_unique<mpm::PlateRule>(0.5)));
+    s->add_rigid_body(container);
+    return s;
+  };
+  auto s = make(std::move(particles));
   double plate_force = 0.0;
   for (int k = 0; k < 150; ++k) {
-    s.step();
-    plate_force += plate.force();
+    if (k > 0 && k == restart_at) {
+      const double t = s->time();
+      s = make(s->particles());
+      s->restore_clock(t, k);
+    }
+    s->step();
+    plate_force += plate->force();
+    if (kept_blocks != nullptr) *kept_blocks = s->steps() - s->grid().full_rebuilds();
   }
-  return {s.particles(), container.z, plate_force};
+  return {s->particles(), container.z, plate_force};
 }
 
 TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
@@ -178,6 +193,23 @@ TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
   // With the tuner switching between one and two threads on its own.
   const auto tuned = run_steps(shell, 2, true);
   EXPECT_TRUE(same_bits(one.p.x.z, tuned.p.x.z) && same_bits(one.p.C, tuned.p.C));
+}
+
+// The grid keeps its blocks while the particles stay within them, and starts afresh in a new
+// stepper (a resumed run): both sum in the same order, so both give the same bits.
+TEST(Threads, AStepperMadeAgainFromItsParticlesStepsOnAsTheFirstOne) {
+  const auto shell = small_cap();
+  long kept = 0;
+  const auto straight = run_steps(shell, 1, false, 0, &kept);
+  ASSERT_GT(kept, 10) << "the grid never kept its blocks: the test would not cover it";
+  for (const int threads : {1, 2}) {
+    const auto restarted = run_steps(shell, threads, false, 75);
+    EXPECT_TRUE(same_bits(straight.p.x.z, restarted.p.x.z) &&
+                same_bits(straight.p.C, restarted.p.C) &&
+                same_bits(straight.p.v.x, restarted.p.v.x))
+        << threads << " threads";
+    EXPECT_EQ(std::memcmp(&straight.plate_force, &restarted.plate_force, sizeof(double)), 0);
+  }
 }
 
 TEST(Threads, InternalForcesAndExplicitStepsAreTheSameAtOneAndFourThreads) {
