@@ -116,34 +116,33 @@ void SparseGrid::rebuild(const core::Points& x) {
   if (bad < n) {
     throw std::runtime_error(fmt::format("particle {} has a non-finite position", bad));
   }
-  if (!same && !(had_blocks && regroup())) make_blocks();
-  zero_nodes();
+  if (!same && had_blocks && regroup()) {
+    zero_live_blocks();  // the last step's sums, in the blocks they were made in
+    find_live_blocks();
+  } else if (!same) {
+    make_blocks();  // every node zero
+    find_live_blocks();
+  } else {
+    zero_live_blocks();  // the same blocks are live again
+  }
 }
 
-// Particles that moved into another block that is already a home, or whose stencils reach
-// further into neighbours that are already made, are regrouped; the blocks stay. Every order the
-// transfers and rules sum in is then the one a fresh build would give: homes along the curve,
-// particles by number within a home, blocks in memory along the curve (blocks that no stencil
-// reaches any more hold no mass, and the rules skip massless nodes). False: a particle needs a
-// block that is not made, so the blocks must be made again.
+// Particles that moved into another block that is a home slot are regrouped; the blocks stay.
+// Every order the transfers and rules sum in is then the one a fresh build would give: homes
+// along the curve (empty slots add nothing), particles by number within a home, live blocks in
+// memory along the curve. False: a particle moved beyond the slots, so the blocks must be made
+// again.
 bool SparseGrid::regroup() {
   const std::size_t np = home_key_.size();
   for (std::size_t p = 0; p < np; ++p) {
     if (scratch_keys_[p] == home_key_[p] && scratch_reach_[p] == home_reach_[p]) continue;
-    int h = home_[p];
     if (scratch_keys_[p] != home_key_[p]) {
       const auto it = block_index_.find(scratch_keys_[p]);
       if (it == block_index_.end()) return false;
-      h = home_of_block_[static_cast<std::size_t>(it->second)];
+      const int h = home_of_block_[static_cast<std::size_t>(it->second)];
       if (h < 0) return false;
+      home_[p] = h;
     }
-    const std::uint8_t reaches = kSubsets[scratch_reach_[p]];
-    for (int nb = 1; nb < 8; ++nb) {
-      if ((reaches >> nb & 1) != 0 && neighbours_[static_cast<std::size_t>(h)][nb] < 0) {
-        return false;
-      }
-    }
-    home_[p] = h;
     home_key_[p] = scratch_keys_[p];
     home_reach_[p] = scratch_reach_[p];
   }
@@ -172,6 +171,17 @@ void SparseGrid::make_blocks() {
     }
     home_[p] = last_id;
   }
+  // Home slots: every block within one block of a particle's home, so that a particle that
+  // moves into a neighbouring block finds a home there and the blocks are kept (regroup()).
+  const std::size_t particle_homes = block_coords_.size();
+  for (std::size_t h = 0; h < particle_homes; ++h) {
+    const auto b = block_coords_[h];
+    for (int i = -1; i <= 1; ++i) {
+      for (int j = -1; j <= 1; ++j) {
+        for (int k = -1; k <= 1; ++k) (void)block_id(b[0] + i, b[1] + j, b[2] + k);
+      }
+    }
+  }
   // Renumbered along a Morton curve of their coordinates, so that homes near each other in
   // space are near each other in the order of the transfers (and share cached nodes).
   const std::size_t nh = block_coords_.size();
@@ -182,19 +192,13 @@ void SparseGrid::make_blocks() {
   std::sort(by_curve.begin(), by_curve.end());
   std::vector<int> renumber(nh);  // block id -> home number; by_curve[h].second is the inverse
   for (std::size_t h = 0; h < nh; ++h) renumber[by_curve[h].second] = static_cast<int>(h);
-  // The neighbour blocks that some particle of each home reaches (bit nb of needed[h]): every
-  // nb whose axes are among those a particle's stencil crosses.
-  std::vector<std::uint8_t> needed(nh, 0);
-  for (std::size_t p = 0; p < np; ++p) {
-    home_[p] = renumber[home_[p]];
-    needed[home_[p]] |= kSubsets[reach[p]];
-  }
-  // The +x, +y, +z neighbours that stencils reach (blocks made here get the next ids), and
-  // the tasks of the parallel transfer: one task per cube of 4 x 4 x 4 home blocks, coloured
-  // by the parity of the cube's coordinates. A task writes into its cube and one block beyond
-  // on the + sides, so two tasks of one colour (a cube apart at least) never write the same
-  // node. Cubes of 4 blocks rather than single blocks: most nodes are then written within one
-  // task, while cached.
+  for (std::size_t p = 0; p < np; ++p) home_[p] = renumber[home_[p]];
+  // The +x, +y, +z neighbours of every slot (blocks made here get the next ids), so that any
+  // stencil from any slot finds its nodes, and the tasks of the parallel transfer: one task per
+  // cube of 4 x 4 x 4 home blocks, coloured by the parity of the cube's coordinates. A task writes
+  // into its cube and one block beyond on the + sides, so two tasks of one colour (a cube apart at
+  // least) never write the same node. Cubes of 4 blocks rather than single blocks: most nodes are
+  // then written within one task, while cached.
   neighbours_.resize(nh);
   for (auto& c : colour_homes_) c.clear();
   for (auto& c : colour_tasks_) c.assign(1, 0);
@@ -203,9 +207,7 @@ void SparseGrid::make_blocks() {
     const auto b = block_coords_[by_curve[h].second];
     for (int nb = 0; nb < 8; ++nb) {
       neighbours_[h][nb] =
-          (needed[h] >> nb & 1) != 0
-              ? block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1))
-              : -1;  // no stencil goes there
+          block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1));
     }
     const std::array<std::int64_t, 3> cube = {b[0] >> kCubeShift, b[1] >> kCubeShift,
                                               b[2] >> kCubeShift};
@@ -220,8 +222,8 @@ void SparseGrid::make_blocks() {
     last_cube[colour] = cube;
   }
   // The blocks laid out in memory along the curve too, so that a thread given a stretch of
-  // the curve (tasks, homes, the zeroing below) works on a stretch of memory. The order depends
-  // on the set of blocks only.
+  // the curve (tasks, homes, the zeroing) works on a stretch of memory, and the live blocks'
+  // order (the rules' sums) is that of a fresh grid.
   const std::size_t nb_all = block_coords_.size();
   std::vector<std::pair<std::uint64_t, int>> blocks_by_curve(nb_all);
   for (std::size_t b = 0; b < nb_all; ++b) {
@@ -237,9 +239,7 @@ void SparseGrid::make_blocks() {
   }
   block_coords_ = std::move(coords);
   for (auto& nbs : neighbours_) {
-    for (int& b : nbs) {
-      if (b >= 0) b = place[static_cast<std::size_t>(b)];
-    }
+    for (int& b : nbs) b = place[static_cast<std::size_t>(b)];
   }
   for (int c = 0; c < 8; ++c) {
     if (!colour_homes_[c].empty()) {
@@ -254,6 +254,29 @@ void SparseGrid::make_blocks() {
   home_key_ = keys;
   home_reach_ = reach;
   group_particles();
+  const std::size_t nn = block_coords_.size() * kBlockNodes;
+  nodes.assign(nn, Node{});
+  tags.assign(nn, 0);
+  block_tags.assign(block_coords_.size(), 0);
+}
+
+// The blocks that this step's stencils reach: of every home with particles, the neighbours their
+// stencils cross into. In memory order (the curve's), which depends on the particles only.
+void SparseGrid::find_live_blocks() {
+  auto& mark = live_mark_;
+  mark.assign(block_coords_.size(), 0);
+  const std::size_t nh = neighbours_.size();
+  for (std::size_t h = 0; h < nh; ++h) {
+    std::uint8_t reaches = 0;
+    for (int i = start_[h]; i < start_[h + 1]; ++i) reaches |= kSubsets[home_reach_[order_[i]]];
+    for (int nb = 0; nb < 8; ++nb) {
+      if ((reaches >> nb & 1) != 0) mark[static_cast<std::size_t>(neighbours_[h][nb])] = 1;
+    }
+  }
+  live_.clear();
+  for (std::size_t b = 0; b < mark.size(); ++b) {
+    if (mark[b] != 0) live_.push_back(static_cast<int>(b));
+  }
 }
 
 // Particles grouped by home block (counting sort: by number within a home).
@@ -267,18 +290,16 @@ void SparseGrid::group_particles() {
   for (std::size_t p = 0; p < np; ++p) order_[fill_[home_[p]]++] = static_cast<int>(p);
 }
 
-void SparseGrid::zero_nodes() {
-  const std::size_t nn = block_coords_.size() * kBlockNodes;
-  nodes.resize(nn);
-  tags.resize(nn);
-  block_tags.assign(block_coords_.size(), 0);
-  Node* node = nodes.data();
-  std::uint8_t* tag = tags.data();
-  const long n = static_cast<long>(nn);
+// Zeroes the live blocks of the last step; every other block is zero already.
+void SparseGrid::zero_live_blocks() {
+  const long n = static_cast<long>(live_.size());
 #pragma omp parallel for schedule(static)
-  for (long a = 0; a < n; ++a) {
-    node[a] = Node{};
-    tag[a] = 0;
+  for (long k = 0; k < n; ++k) {
+    const auto b = static_cast<std::size_t>(live_[static_cast<std::size_t>(k)]);
+    std::fill_n(nodes.begin() + static_cast<std::ptrdiff_t>(b * kBlockNodes), kBlockNodes, Node{});
+    std::fill_n(tags.begin() + static_cast<std::ptrdiff_t>(b * kBlockNodes), kBlockNodes,
+                std::uint8_t{0});
+    block_tags[b] = 0;
   }
 }
 

@@ -23,11 +23,12 @@ class SparseGrid {
 
   [[nodiscard]] double dx() const { return dx_; }
 
-  // Activates the blocks covered by the quadratic B-spline stencils of the particles at x, zeroes
-  // the node data and groups the particles by the block of their stencil's first node. The
-  // blocks are kept (and the particles regrouped if some changed block) unless a particle's
-  // stencil needs a block that is not made; the orders the transfers and rules sum in are those
-  // of a fresh grid either way, so results do not depend on the grid's history.
+  // Makes the blocks around the particles at x, groups the particles by the block of their
+  // stencil's first node (their home), finds the blocks their quadratic B-spline stencils reach
+  // (live_blocks) and zeroes the node data. The blocks are made for every home within one block
+  // of a particle's, so a particle that moves into a neighbouring block is only regrouped; they
+  // are made again when a particle goes beyond them. The orders the transfers and rules sum in
+  // are those of a fresh grid either way: results do not depend on the grid's history.
   void rebuild(const core::Points& x);
 
   // --- nodes ---------------------------------------------------------------------------------
@@ -70,6 +71,9 @@ class SparseGrid {
     return {order_.data() + start_[h], order_.data() + start_[h + 1]};
   }
   [[nodiscard]] std::size_t num_blocks() const { return block_coords_.size(); }
+  // The blocks that the last rebuild's stencils reach, in memory order; the nodes of every other
+  // block are zero.
+  [[nodiscard]] std::span<const int> live_blocks() const { return live_; }
   // How many calls of rebuild() made the blocks again (the others kept them).
   [[nodiscard]] long full_rebuilds() const { return full_rebuilds_; }
 
@@ -78,7 +82,8 @@ class SparseGrid {
   bool regroup();          // the blocks kept, particles regrouped; false if blocks are missing
   void make_blocks();      // the blocks made again from scratch_keys_ and scratch_reach_
   void group_particles();  // order_ and start_ from home_
-  void zero_nodes();
+  void find_live_blocks();
+  void zero_live_blocks();
 
   double dx_;
   std::vector<std::uint64_t> home_key_;      // per particle: key of its home block, last rebuild
@@ -88,13 +93,15 @@ class SparseGrid {
   std::vector<std::array<std::int64_t, 3>> scratch_blocks_;
   std::unordered_map<std::uint64_t, int> block_index_;
   std::vector<std::array<std::int64_t, 3>> block_coords_;
-  // Per home: block ids of itself and its +x, +y, +z... neighbours; -1 where no stencil reaches.
+  // Per home slot: block ids of itself and its +x, +y, +z... neighbours.
   std::vector<std::array<int, 8>> neighbours_;
   std::vector<int> home_;           // per particle
   std::vector<int> home_of_block_;  // per block: its home number, -1 if it is no home
   std::vector<std::array<std::uint8_t, 3>> local_;
-  std::vector<int> order_, start_;  // particles sorted by home block
-  std::vector<int> fill_;           // scratch of the sort
+  std::vector<int> order_, start_;       // particles sorted by home block
+  std::vector<int> fill_;                // scratch of the sort
+  std::vector<int> live_;                // blocks the stencils reach, ascending
+  std::vector<std::uint8_t> live_mark_;  // scratch of find_live_blocks
   std::array<std::vector<int>, 8> colour_homes_;
   std::array<std::vector<int>, 8> colour_tasks_;  // offsets into colour_homes_
   long full_rebuilds_ = 0;

@@ -7,7 +7,8 @@ namespace snapjump::mpm {
 
 void ClampRule::apply(SparseGrid& grid, const StepContext& ctx) {
   double impulse_z = 0.0;
-  for (std::size_t b = 0; b < grid.num_blocks(); ++b) {
+  for (const int live : grid.live_blocks()) {
+    const auto b = static_cast<std::size_t>(live);
     if ((grid.block_tags[b] & tag_) == 0) continue;
     for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
       if ((grid.tags[a] & tag_) == 0 || grid.nodes[a].m <= 0.0) continue;
@@ -25,7 +26,8 @@ void ClampRule::apply(SparseGrid& grid, const StepContext& ctx) {
 void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
   double normal = 0.0, tangential = 0.0;
   loaded_.clear();
-  for (std::size_t b = 0; b < grid.num_blocks(); ++b) {
+  for (const int live : grid.live_blocks()) {
+    const auto b = static_cast<std::size_t>(live);
     // Only blocks that hold a node layer z = 0, -dx, ..., -(layers - 1) dx.
     const std::int64_t k0 = grid.block_coords(b)[2] * kBlock;
     if (k0 > 0 || k0 + kBlock - 1 <= -layers_) continue;

@@ -82,15 +82,22 @@ TEST(Grid, ColoursNeverShareANodeAndARebuildEqualsAFreshBuild) {
   }
 }
 
-// The blocks are kept while every particle's stencil lies in blocks already made (the particles
-// regrouped when one moves into another particle's block), and made again otherwise; kept or
-// made again, the grouping is a fresh grid's.
-TEST(Grid, KeepsItsBlocksWhileTheStencilsStayInThem) {
+// The blocks are made around the particles' homes (every block within one block of one) and kept
+// while the particles stay among them, regrouped when one moves into another block; they are
+// made again when a particle goes further. Kept or made again, the grouping and the blocks the
+// stencils reach (in the order the rules visit them) are a fresh grid's.
+TEST(Grid, KeepsItsBlocksWhileTheParticlesStayAmongThem) {
   const double dx = 0.001;
   core::Points x;
   x.push_back(0.0101, 0.0101, 0.0101);  // grid units 10.1: stencil from node 9 (block 2, local 1)
   x.push_back(0.0205, 0.0101, 0.0101);  // 20.5: from node 20 (block 5, local 0)
   SparseGrid g(dx);
+  const auto live_coords = [](const SparseGrid& grid) {
+    std::vector<std::array<std::int64_t, 3>> out;
+    for (const int b : grid.live_blocks())
+      out.push_back(grid.block_coords(static_cast<std::size_t>(b)));
+    return out;
+  };
   const auto as_fresh = [&] {
     SparseGrid fresh(dx);
     fresh.rebuild(x);
@@ -100,6 +107,7 @@ TEST(Grid, KeepsItsBlocksWhileTheStencilsStayInThem) {
       EXPECT_EQ(std::vector<int>(mine.begin(), mine.end()),
                 std::vector<int>(theirs.begin(), theirs.end()));
     }
+    EXPECT_EQ(live_coords(g), live_coords(fresh));
   };
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 1);
@@ -107,18 +115,26 @@ TEST(Grid, KeepsItsBlocksWhileTheStencilsStayInThem) {
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 1);
   as_fresh();
-  x.x[0] = 0.0206;  // into particle 1's block, whose stencils reach no neighbour along x
+  x.x[0] = 0.0206;  // into particle 1's block
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 1);
   EXPECT_EQ(g.home_of(0), g.home_of(1));
   as_fresh();
-  x.x[0] = 0.0227;  // 22.7: local index 2, reaching into block 6, which is not made
+  x.x[0] = 0.0227;  // 22.7: local index 2, reaching into block 6
+  g.rebuild(x);
+  EXPECT_EQ(g.full_rebuilds(), 1);
+  as_fresh();
+  x.x[0] = 0.0101;  // back to block 2, where no particle is now
+  g.rebuild(x);
+  EXPECT_EQ(g.full_rebuilds(), 1);
+  as_fresh();
+  x.x[1] = 0.0305;  // 30.5: block 7, two blocks from every home of the last build
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 2);
   as_fresh();
-  x.x[1] = 0.0405;  // into an empty block
+  x.x[1] = 0.0245;  // block 6, next to the new home
   g.rebuild(x);
-  EXPECT_EQ(g.full_rebuilds(), 3);
+  EXPECT_EQ(g.full_rebuilds(), 2);
   as_fresh();
 }
 
