@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/morton.hpp"
 #include "mesh/tet10.hpp"
 
 namespace snapjump::mesh {
@@ -115,17 +116,6 @@ void translate_z(Mesh& m, double dz) {
 
 namespace {
 
-// Spreads the low 20 bits of v to every third bit.
-std::uint64_t spread_bits(std::uint64_t v) {
-  v &= 0xfffff;
-  v = (v | v << 32) & 0x1f00000000ffffULL;
-  v = (v | v << 16) & 0x1f0000ff0000ffULL;
-  v = (v | v << 8) & 0x100f00f00f00f00fULL;
-  v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-  v = (v | v << 2) & 0x1249249249249249ULL;
-  return v;
-}
-
 // Orders the items (each a list of node numbers) by their lowest node; ties keep their order.
 template <typename Item>
 void sort_by_lowest_node(std::vector<Item>& items) {
@@ -151,10 +141,9 @@ void sort_along_curve(Mesh& m) {
   };
   std::vector<std::pair<std::uint64_t, int>> by_curve(n);
   for (std::size_t a = 0; a < n; ++a) {
-    by_curve[a] = {spread_bits(cell(m.nodes.x[a], *x0)) << 2 |
-                       spread_bits(cell(m.nodes.y[a], *y0)) << 1 |
-                       spread_bits(cell(m.nodes.z[a], *z0)),
-                   static_cast<int>(a)};
+    by_curve[a] = {
+        core::morton_key(cell(m.nodes.x[a], *x0), cell(m.nodes.y[a], *y0), cell(m.nodes.z[a], *z0)),
+        static_cast<int>(a)};
   }
   std::sort(by_curve.begin(), by_curve.end());  // (key, old number): ties in their old order
   std::vector<int> renumber(n);

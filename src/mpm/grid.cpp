@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/morton.hpp"
+
 namespace snapjump::mpm {
 namespace {
 
@@ -33,20 +35,11 @@ std::uint64_t key(std::int64_t bx, std::int64_t by, std::int64_t bz) {
          static_cast<std::uint64_t>(bz + kOffset);
 }
 
-// Interleaves the low 21 bits of the three (offset) coordinates: z-order of the blocks.
+// The blocks' place on the Morton curve (coordinates offset to be non-negative).
 std::uint64_t morton_key(const std::array<std::int64_t, 3>& b) {
-  const auto spread = [](std::uint64_t v) {
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffULL;
-    v = (v | v << 16) & 0x1f0000ff0000ffULL;
-    v = (v | v << 8) & 0x100f00f00f00f00fULL;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
-    v = (v | v << 2) & 0x1249249249249249ULL;
-    return v;
-  };
-  return spread(static_cast<std::uint64_t>(b[0] + kOffset)) << 2 |
-         spread(static_cast<std::uint64_t>(b[1] + kOffset)) << 1 |
-         spread(static_cast<std::uint64_t>(b[2] + kOffset));
+  return core::morton_key(static_cast<std::uint64_t>(b[0] + kOffset),
+                          static_cast<std::uint64_t>(b[1] + kOffset),
+                          static_cast<std::uint64_t>(b[2] + kOffset));
 }
 
 }  // namespace
