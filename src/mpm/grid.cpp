@@ -113,7 +113,14 @@ void SparseGrid::rebuild(const core::Points& x) {
     zero_live_blocks();  // the last step's sums, in the blocks they were made in
     find_live_blocks();
   } else if (!same) {
-    make_blocks();  // every node zero
+    try {
+      make_blocks();  // every node zero
+    } catch (...) {
+      // A particle out of the grid's range: no half-made blocks for a later call to keep.
+      block_coords_.clear();
+      home_key_.clear();
+      throw;
+    }
     find_live_blocks();
   } else {
     zero_live_blocks();  // the same blocks are live again

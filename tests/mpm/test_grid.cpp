@@ -8,6 +8,8 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "fem/body.hpp"
@@ -136,6 +138,32 @@ TEST(Grid, KeepsItsBlocksWhileTheParticlesStayAmongThem) {
   g.rebuild(x);
   EXPECT_EQ(g.full_rebuilds(), 2);
   as_fresh();
+}
+
+// A particle beyond the grid's range (2^20 blocks from the origin) is refused with a message, and
+// the grid afterwards starts afresh rather than keeping blocks half made.
+TEST(Grid, AParticleOutOfRangeIsRefusedAndTheGridRecovers) {
+  const double dx = 0.001;
+  core::Points x;
+  x.push_back(0.0101, 0.0101, 0.0101);
+  x.push_back(0.0305, 0.0101, 0.0101);
+  SparseGrid g(dx);
+  g.rebuild(x);
+  x.x[1] = 1.0e4;  // 10 km: 2.5 million blocks out
+  try {
+    g.rebuild(x);
+    FAIL() << "no error for a particle out of range";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("left the grid's range"), std::string::npos) << e.what();
+  }
+  x.x[1] = 0.0111;  // into particle 0's block, the one block the failed call had made
+  g.rebuild(x);
+  SparseGrid fresh(dx);
+  fresh.rebuild(x);
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(stencil_nodes(g, i), stencil_nodes(fresh, i)) << "particle " << i;
+  }
+  EXPECT_EQ(g.live_blocks().size(), fresh.live_blocks().size());
 }
 
 }  // namespace
