@@ -17,6 +17,9 @@ std::int64_t floor_div(std::int64_t a, std::int64_t b) {
 }
 
 constexpr std::int64_t kOffset = std::int64_t{1} << 20;  // 21 bits per axis
+// How far from the origin, in cells, a particle may be: its home's slots and their neighbours
+// (two blocks beyond the home on the + side, one on the - side) stay inside the keys' range.
+constexpr double kReach = static_cast<double>(kBlock * (kOffset - 4));
 // kSubsets[r]: bit nb set for every nb whose axis bits are among those of r.
 constexpr std::array<std::uint8_t, 8> kSubsets = [] {
   std::array<std::uint8_t, 8> t{};
@@ -81,12 +84,12 @@ void SparseGrid::rebuild(const core::Points& x) {
   const bool had_blocks = home_key_.size() == np && !block_coords_.empty();
   bool same = had_blocks;
   const long n = static_cast<long>(np);
-  long bad = n;  // the lowest particle with a non-finite position (n: none)
+  long bad = n;  // the lowest particle outside the grid's range or not finite (n: none)
 #pragma omp parallel for schedule(static) reduction(&& : same) reduction(min : bad)
   for (long i = 0; i < n; ++i) {
     const auto p = static_cast<std::size_t>(i);
     const double gx = x.x[p] * inv_dx, gy = x.y[p] * inv_dx, gz = x.z[p] * inv_dx;
-    if (!std::isfinite(gx + gy + gz)) {
+    if (!(std::abs(gx) < kReach && std::abs(gy) < kReach && std::abs(gz) < kReach)) {
       bad = std::min(bad, i);
       same = false;
       continue;
@@ -107,7 +110,14 @@ void SparseGrid::rebuild(const core::Points& x) {
     same = same && had_blocks && keys[p] == home_key_[p] && reach[p] == home_reach_[p];
   }
   if (bad < n) {
-    throw std::runtime_error(fmt::format("particle {} has a non-finite position", bad));
+    const auto p = static_cast<std::size_t>(bad);
+    if (!std::isfinite(x.x[p] + x.y[p] + x.z[p])) {
+      throw std::runtime_error(fmt::format("particle {} has a non-finite position", bad));
+    }
+    throw std::runtime_error(fmt::format(
+        "particle {} left the grid's range: at ({:.6g}, {:.6g}, {:.6g}) m, the grid reaches {:.6g} "
+        "m from the origin along each axis (grid spacing {} m)",
+        bad, x.x[p], x.y[p], x.z[p], kReach * dx_, dx_));
   }
   if (!same && had_blocks && regroup()) {
     zero_live_blocks();  // the last step's sums, in the blocks they were made in
@@ -116,9 +126,10 @@ void SparseGrid::rebuild(const core::Points& x) {
     try {
       make_blocks();  // every node zero
     } catch (...) {
-      // A particle out of the grid's range: no half-made blocks for a later call to keep.
-      block_coords_.clear();
-      home_key_.clear();
+      // No half-made blocks for a later call to keep: the grid starts afresh.
+      const long made = full_rebuilds_;
+      *this = SparseGrid(dx_);
+      full_rebuilds_ = made;
       throw;
     }
     find_live_blocks();
@@ -155,7 +166,6 @@ void SparseGrid::make_blocks() {
   const auto& keys = scratch_keys_;
   const auto& blocks = scratch_blocks_;
   const auto& reach = scratch_reach_;
-  ++full_rebuilds_;
   block_index_.clear();
   block_coords_.clear();
   home_.resize(np);
@@ -258,6 +268,7 @@ void SparseGrid::make_blocks() {
   nodes.assign(nn, Node{});
   tags.assign(nn, 0);
   block_tags.assign(block_coords_.size(), 0);
+  ++full_rebuilds_;
 }
 
 // The blocks that this step's stencils reach: of every home with particles, the neighbours their

@@ -1,6 +1,6 @@
 // A background grid that exists only where particles are: blocks of 4 x 4 x 4 nodes found through
-// a hash of their integer coordinates, so the domain is unbounded (the popper flies). Node data
-// are structure-of-arrays over all active blocks.
+// a hash of their integer coordinates, so the domain is unbounded (the popper flies). The nodes'
+// (m, p) records lie block after block, the blocks along a Morton curve.
 #pragma once
 
 #include <array>
@@ -48,31 +48,36 @@ class SparseGrid {
   }
 
   // --- particles, as grouped by rebuild() ----------------------------------------------------
-  // For particle p: its home (an index into the homes, numbered along the Morton curve; see
+  // For particle p: its home (an index into the home slots, numbered along the Morton curve; see
   // neighbours_of_home) and the local index (0..3) of its stencil's first node in that block, per
-  // axis.
+  // axis. The slots are the blocks within one block of a particle's home at the last time the
+  // blocks were made: many hold no particle now.
   [[nodiscard]] int home_of(std::size_t p) const { return home_[p]; }
   [[nodiscard]] const std::array<std::uint8_t, 3>& local_of(std::size_t p) const {
     return local_[p];
   }
-  // Block ids of home block h and of its neighbours: entry nb (bit 0: +x, bit 1: +y, bit 2: +z)
-  // is the block that holds the stencil nodes whose local index overflows along those axes.
+  // Block ids of home slot h and of its neighbours: entry nb (bit 0: +x, bit 1: +y, bit 2: +z)
+  // is the block that holds the stencil nodes whose local index overflows along those axes. All
+  // eight exist for every slot.
   [[nodiscard]] const std::array<int, 8>& neighbours_of_home(int h) const { return neighbours_[h]; }
-  // Home blocks of one colour (0..7): the parity of their cube of 4 x 4 x 4 blocks, see below.
+  // Home slots of one colour (0..7): the parity of their cube of 4 x 4 x 4 blocks, see below.
   [[nodiscard]] const std::vector<int>& homes_of_colour(int c) const { return colour_homes_[c]; }
   // The tasks of colour c: task k is homes_of_colour(c)[tasks[k] .. tasks[k + 1]), the homes of
   // one cube of 4 x 4 x 4 blocks. Tasks of one colour never write the same node, so they can run
   // in parallel; the homes of a task lie together along the Morton curve.
   [[nodiscard]] const std::vector<int>& tasks_of_colour(int c) const { return colour_tasks_[c]; }
-  // All particles, grouped by home block, homes in Morton order.
+  // All particles, grouped by home, homes in Morton order.
   [[nodiscard]] std::span<const int> particles_in_home_order() const { return order_; }
-  // Particles whose home is block h (an index into the home blocks).
+  // Particles whose home is slot h (an index into the home slots; often none).
   [[nodiscard]] std::span<const int> particles_of(int h) const {
     return {order_.data() + start_[h], order_.data() + start_[h + 1]};
   }
   [[nodiscard]] std::size_t num_blocks() const { return block_coords_.size(); }
-  // The blocks that the last rebuild's stencils reach, in memory order; the nodes of every other
-  // block are zero.
+  // The blocks that the last rebuild's stencils reach, in memory order (the curve's). The nodes
+  // of every other block are zero, and must stay so: a block kept from step to step may be
+  // reached again later, and rebuild() zeroes only the blocks that were reached. A grid rule
+  // writes to nodes of these blocks only (and, to sum in a fresh grid's order, visits them in
+  // this order).
   [[nodiscard]] std::span<const int> live_blocks() const { return live_; }
   // How many calls of rebuild() made the blocks again (the others kept them).
   [[nodiscard]] long full_rebuilds() const { return full_rebuilds_; }

@@ -25,6 +25,8 @@ class GridRule {
  public:
   virtual ~GridRule() = default;
   [[nodiscard]] virtual std::string_view name() const = 0;
+  // Changes the grid's momentum between the transfers. Writes only to the nodes of
+  // grid.live_blocks() (see there), visited in that order.
   virtual void apply(SparseGrid& grid, const StepContext& ctx) = 0;
 };
 

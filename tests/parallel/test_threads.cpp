@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 #include <numbers>
+#include <vector>
 
 #include "fem/body.hpp"
 #include "fem/explicit.hpp"
@@ -138,7 +139,7 @@ struct StepState {
 // the stepper is made again from its particles after that many steps (as a resumed run is), so
 // its grid starts afresh instead of keeping its blocks.
 StepState run_steps(const fem::Body& shell, int threads, bool tune, int restart_at = 0,
-                    long* kept_blocks = nullptr) {
+                    std::vector<long>* blocks_made = nullptr) {
   const parallel::ScopedThreadCount count(threads);
   hybrid::BodyForces forces(shell, 9.81, [](double) { return 2000.0; });
   auto particles = hybrid::particles_of(shell);
@@ -171,7 +172,7 @@ StepState run_steps(const fem::Body& shell, int threads, bool tune, int restart_
     }
     s->step();
     plate_force += plate->force();
-    if (kept_blocks != nullptr) *kept_blocks = s->steps() - s->grid().full_rebuilds();
+    if (blocks_made != nullptr) blocks_made->push_back(s->grid().full_rebuilds());
   }
   return {s->particles(), container.z, plate_force};
 }
@@ -199,9 +200,13 @@ TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
 // stepper (a resumed run): both sum in the same order, so both give the same bits.
 TEST(Threads, AStepperMadeAgainFromItsParticlesStepsOnAsTheFirstOne) {
   const auto shell = small_cap();
-  long kept = 0;
-  const auto straight = run_steps(shell, 1, false, 0, &kept);
-  ASSERT_GT(kept, 10) << "the grid never kept its blocks: the test would not cover it";
+  std::vector<long> made;  // blocks made so far, after each step
+  const auto straight = run_steps(shell, 1, false, 0, &made);
+  ASSERT_EQ(made.size(), 150u);
+  // At the restart the straight run's grid was kept while the restarted one is new.
+  ASSERT_EQ(made[75], made[74]) << "the straight run made its blocks again at the restart: the "
+                                   "test would not compare a kept grid with a fresh one";
+  ASSERT_LT(made.back(), 50) << "the grid was rarely kept";
   for (const int threads : {1, 2}) {
     const auto restarted = run_steps(shell, threads, false, 75);
     EXPECT_TRUE(same_bits(straight.p.x.z, restarted.p.x.z) &&
