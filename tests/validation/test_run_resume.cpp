@@ -37,6 +37,16 @@ std::string read(const std::filesystem::path& p) {
   return s.str();
 }
 
+// --resume of the run in dir, which must fail: its messages.
+std::string refused_resume(const std::filesystem::path& dir) {
+  std::vector<std::string> args = {"snapjump", "run", "--resume", dir.string(), "--quiet"};
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
+  return err.str();
+}
+
 TEST(RunResume, PausedAndResumedRunMatchesAStraightOne) {
   const auto base = std::filesystem::temp_directory_path() / "snapjump_resume_test";
   std::filesystem::remove_all(base);
@@ -62,12 +72,8 @@ TEST(RunResume, PausedAndResumedRunMatchesAStraightOne) {
     const std::uint64_t sum = fnv1a64(std::string_view(bytes).substr(0, bytes.size() - kTrailer));
     std::memcpy(bytes.data() + bytes.size() - sizeof sum, &sum, sizeof sum);
     std::ofstream(other / "checkpoint.bin", std::ios::binary) << bytes;
-    std::vector<const char*> argv = {"snapjump", "run", "--resume", nullptr, "--quiet"};
-    const std::string dir = other.string();
-    argv[3] = dir.c_str();
-    std::ostringstream out, err;
-    EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
-    EXPECT_NE(err.str().find("another numbering of its nodes"), std::string::npos) << err.str();
+    const auto err = refused_resume(other);
+    EXPECT_NE(err.find("another numbering of its nodes"), std::string::npos) << err;
   }
   ASSERT_EQ(run({"run", "--resume", paused.string(), "--quiet"}), 0);
   EXPECT_EQ(read(paused / "series.csv"), read(straight / "series.csv"));
@@ -134,16 +140,6 @@ void add_to_numerics(const std::filesystem::path& dir, const std::string& line) 
   ASSERT_NE(at, std::string::npos) << text;
   text.insert(at + 11, line + "\n");
   std::ofstream(dir / "case.toml") << text;
-}
-
-// --resume of the run, which must fail: its messages.
-std::string refused_resume(const std::filesystem::path& dir) {
-  std::vector<std::string> args = {"snapjump", "run", "--resume", dir.string(), "--quiet"};
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  EXPECT_NE(run_cli(static_cast<int>(argv.size()), argv.data(), out, err), 0);
-  return err.str();
 }
 
 TEST(RunResume, ARunIsNotContinuedWithOtherNumerics) {
