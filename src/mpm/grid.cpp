@@ -192,31 +192,58 @@ void SparseGrid::make_blocks() {
       }
     }
   }
-  // Renumbered along a Morton curve of their coordinates, so that homes near each other in
-  // space are near each other in the order of the transfers (and share cached nodes).
+  // The +x, +y, +z neighbours of every slot (blocks made here get the next ids), so that any
+  // stencil from any slot finds its nodes.
   const std::size_t nh = block_coords_.size();
-  std::vector<std::pair<std::uint64_t, int>> by_curve(nh);
   for (std::size_t h = 0; h < nh; ++h) {
-    by_curve[h] = {morton_key(block_coords_[h]), static_cast<int>(h)};
+    const auto b = block_coords_[h];
+    for (int nb = 1; nb < 8; ++nb) {
+      (void)block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1));
+    }
+  }
+  // Every block laid out in memory along a Morton curve of their coordinates, and the slots
+  // numbered in that order: homes near each other in space are near each other in the order of
+  // the transfers (and share cached nodes), a thread given a stretch of the curve (tasks, homes,
+  // the zeroing) works on a stretch of memory, and the reached blocks' order (the rules' sums)
+  // depends on the set of blocks only.
+  const std::size_t nb_all = block_coords_.size();
+  std::vector<std::pair<std::uint64_t, int>> by_curve(nb_all);
+  for (std::size_t b = 0; b < nb_all; ++b) {
+    by_curve[b] = {morton_key(block_coords_[b]), static_cast<int>(b)};
   }
   std::sort(by_curve.begin(), by_curve.end());
-  std::vector<int> renumber(nh);  // block id -> home number; by_curve[h].second is the inverse
-  for (std::size_t h = 0; h < nh; ++h) renumber[by_curve[h].second] = static_cast<int>(h);
-  for (std::size_t p = 0; p < np; ++p) home_[p] = renumber[home_[p]];
-  // The +x, +y, +z neighbours of every slot (blocks made here get the next ids), so that any
-  // stencil from any slot finds its nodes, and the tasks of the parallel transfer: one task per
-  // cube of 4 x 4 x 4 home blocks, coloured by the parity of the cube's coordinates. A task writes
-  // into its cube and one block beyond on the + sides, so two tasks of one colour (a cube apart at
-  // least) never write the same node. Cubes of 4 blocks rather than single blocks: most nodes are
-  // then written within one task, while cached.
+  std::vector<int> place(nb_all);    // block id -> its place in memory
+  std::vector<int> slot_number(nh);  // block id of a slot -> its home number
+  std::vector<std::array<std::int64_t, 3>> coords(nb_all);
+  home_of_block_.assign(nb_all, -1);
+  int homes_numbered = 0;
+  for (std::size_t k = 0; k < nb_all; ++k) {
+    const auto b = static_cast<std::size_t>(by_curve[k].second);
+    place[b] = static_cast<int>(k);
+    coords[k] = block_coords_[b];
+    if (b < nh) {  // a slot (the slots got the first ids)
+      slot_number[b] = homes_numbered;
+      home_of_block_[k] = homes_numbered++;
+    }
+  }
+  block_coords_ = std::move(coords);
+  for (auto& entry : block_index_) entry.second = place[static_cast<std::size_t>(entry.second)];
+  for (std::size_t p = 0; p < np; ++p) home_[p] = slot_number[home_[p]];
+  // Each home's neighbours, and the tasks of the parallel transfer: one task per cube of 4 x 4 x 4
+  // home blocks, coloured by the parity of the cube's coordinates. A task writes into its cube
+  // and one block beyond on the + sides, so two tasks of one colour (a cube apart at least) never
+  // write the same node. Cubes of 4 blocks rather than single blocks: most nodes are then written
+  // within one task, while cached.
   neighbours_.resize(nh);
   for (auto& c : colour_homes_) c.clear();
   for (auto& c : colour_tasks_) c.assign(1, 0);
   std::array<std::array<std::int64_t, 3>, 8> last_cube{};
-  for (std::size_t h = 0; h < nh; ++h) {
-    const auto b = block_coords_[by_curve[h].second];
+  for (std::size_t k = 0; k < nb_all; ++k) {
+    const int h = home_of_block_[k];
+    if (h < 0) continue;
+    const auto b = block_coords_[k];
     for (int nb = 0; nb < 8; ++nb) {
-      neighbours_[h][nb] =
+      neighbours_[static_cast<std::size_t>(h)][nb] =
           block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1));
     }
     const std::array<std::int64_t, 3> cube = {b[0] >> kCubeShift, b[1] >> kCubeShift,
@@ -228,39 +255,14 @@ void SparseGrid::make_blocks() {
     if (!homes.empty() && cube != last_cube[colour]) {
       colour_tasks_[colour].push_back(static_cast<int>(homes.size()));
     }
-    homes.push_back(static_cast<int>(h));
+    homes.push_back(h);
     last_cube[colour] = cube;
-  }
-  // The blocks laid out in memory along the curve too, so that a thread given a stretch of
-  // the curve (tasks, homes, the zeroing) works on a stretch of memory, and the live blocks'
-  // order (the rules' sums) is that of a fresh grid.
-  const std::size_t nb_all = block_coords_.size();
-  std::vector<std::pair<std::uint64_t, int>> blocks_by_curve(nb_all);
-  for (std::size_t b = 0; b < nb_all; ++b) {
-    blocks_by_curve[b] = {morton_key(block_coords_[b]), static_cast<int>(b)};
-  }
-  std::sort(blocks_by_curve.begin(), blocks_by_curve.end());
-  std::vector<int> place(nb_all);  // block id -> its place in memory
-  std::vector<std::array<std::int64_t, 3>> coords(nb_all);
-  for (std::size_t k = 0; k < nb_all; ++k) {
-    const auto b = static_cast<std::size_t>(blocks_by_curve[k].second);
-    place[b] = static_cast<int>(k);
-    coords[k] = block_coords_[b];
-  }
-  block_coords_ = std::move(coords);
-  for (auto& nbs : neighbours_) {
-    for (int& b : nbs) b = place[static_cast<std::size_t>(b)];
   }
   for (int c = 0; c < 8; ++c) {
     if (!colour_homes_[c].empty()) {
       colour_tasks_[c].push_back(static_cast<int>(colour_homes_[c].size()));
     }
   }
-  home_of_block_.assign(block_coords_.size(), -1);
-  for (std::size_t h = 0; h < nh; ++h) {
-    home_of_block_[static_cast<std::size_t>(neighbours_[h][0])] = static_cast<int>(h);
-  }
-  for (auto& entry : block_index_) entry.second = place[static_cast<std::size_t>(entry.second)];
   home_key_ = keys;
   home_reach_ = reach;
   group_particles();
