@@ -173,9 +173,10 @@ SnapOnset::SnapOnset(double p_low, double p_high, double factor)
 
 void SnapOnset::sample(double t, double V, double p) {
   if (onset_) return;
-  if (last_t_ && !(t > *last_t_)) return;  // a sample no later than the last tells nothing
-  const bool first = !last_t_;
-  const double rate = first ? 0.0 : -(V - *last_V_) / (t - *last_t_);
+  if (sampled_ && !(t > last_t_)) return;  // a sample no later than the last tells nothing
+  const bool first = !sampled_;
+  const double rate = first ? 0.0 : -(V - last_V_) / (t - last_t_);
+  sampled_ = true;
   last_t_ = t;
   last_V_ = V;
   if (first) return;

@@ -146,7 +146,10 @@ class SnapOnset {
   double p_low_, p_high_, factor_;
   double reference_sum_ = 0.0;
   int reference_count_ = 0;
-  std::optional<double> last_t_, last_V_;
+  // The last sample (plain values and a flag: GCC 12 takes an optional's value for
+  // uninitialised here, -Wmaybe-uninitialized, in builds without -fPIC).
+  bool sampled_ = false;
+  double last_t_ = 0.0, last_V_ = 0.0;
   std::optional<double> onset_;
 };
 
