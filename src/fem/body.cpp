@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "mesh/tet10.hpp"
 
@@ -403,28 +404,40 @@ std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
 namespace {
 
 // Calls visit(face, N, area_vector * weight, position) at each quadrature point of each face;
-// area_vector = dx/dr x dx/ds.
+// area_vector = dx/dr x dx/ds. The shape functions at the rule's points are evaluated once per
+// call and each face's nodes gathered once (the sums are those of a point-by-point evaluation).
 template <typename Visit>
 void integrate_faces(const std::vector<std::array<int, 6>>& faces, const mesh::Points& x,
                      Visit&& visit) {
   const auto rule = tri_rule_degree4();
+  constexpr std::size_t kMaxPoints = 8;
+  if (rule.size() > kMaxPoints) throw std::logic_error("integrate_faces: rule too long");
+  std::array<std::array<double, kTriNodes>, kMaxPoints> N{};
+  std::array<std::array<std::array<double, 2>, kTriNodes>, kMaxPoints> G{};
+  for (std::size_t q = 0; q < rule.size(); ++q) {
+    N[q] = tri6_shape(rule[q].r, rule[q].s);
+    G[q] = tri6_shape_gradients(rule[q].r, rule[q].s);
+  }
   for (const auto& face : faces) {
-    for (const auto& q : rule) {
-      const auto N = tri6_shape(q.r, q.s);
-      const auto G = tri6_shape_gradients(q.r, q.s);
+    double xa[kTriNodes][3];
+    for (int a = 0; a < kTriNodes; ++a) {
+      xa[a][0] = x.x[face[a]];
+      xa[a][1] = x.y[face[a]];
+      xa[a][2] = x.z[face[a]];
+    }
+    for (std::size_t q = 0; q < rule.size(); ++q) {
       double p[3] = {}, dr[3] = {}, ds[3] = {};
       for (int a = 0; a < kTriNodes; ++a) {
-        const double xa[3] = {x.x[face[a]], x.y[face[a]], x.z[face[a]]};
         for (int i = 0; i < 3; ++i) {
-          p[i] += N[a] * xa[i];
-          dr[i] += G[a][0] * xa[i];
-          ds[i] += G[a][1] * xa[i];
+          p[i] += N[q][a] * xa[a][i];
+          dr[i] += G[q][a][0] * xa[a][i];
+          ds[i] += G[q][a][1] * xa[a][i];
         }
       }
-      const double n[3] = {q.weight * (dr[1] * ds[2] - dr[2] * ds[1]),
-                           q.weight * (dr[2] * ds[0] - dr[0] * ds[2]),
-                           q.weight * (dr[0] * ds[1] - dr[1] * ds[0])};
-      visit(face, N, n, p);
+      const double w = rule[q].weight;
+      const double n[3] = {w * (dr[1] * ds[2] - dr[2] * ds[1]), w * (dr[2] * ds[0] - dr[0] * ds[2]),
+                           w * (dr[0] * ds[1] - dr[1] * ds[0])};
+      visit(face, N[q], n, p);
     }
   }
 }

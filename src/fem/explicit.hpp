@@ -47,6 +47,7 @@ class ExplicitDriver {
   [[nodiscard]] const mesh::Points& velocities() const { return v_; }
   [[nodiscard]] double kinetic_energy() const;
   [[nodiscard]] const Body& body() const { return body_; }
+  [[nodiscard]] const parallel::ThreadTuner& thread_tuner() const { return tuner_; }
 
  private:
   void advance();  // one step at the current thread count

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -278,12 +279,18 @@ void SparseGrid::make_blocks() {
 void SparseGrid::find_live_blocks() {
   auto& mark = live_mark_;
   mark.assign(block_coords_.size(), 0);
-  const std::size_t nh = neighbours_.size();
-  for (std::size_t h = 0; h < nh; ++h) {
+  const long nh = static_cast<long>(neighbours_.size());
+#pragma omp parallel for schedule(static)
+  for (long h = 0; h < nh; ++h) {
+    const auto hs = static_cast<std::size_t>(h);
     std::uint8_t reaches = 0;
-    for (int i = start_[h]; i < start_[h + 1]; ++i) reaches |= kSubsets[home_reach_[order_[i]]];
+    for (int i = start_[hs]; i < start_[hs + 1]; ++i) reaches |= kSubsets[home_reach_[order_[i]]];
     for (int nb = 0; nb < 8; ++nb) {
-      if ((reaches >> nb & 1) != 0) mark[static_cast<std::size_t>(neighbours_[h][nb])] = 1;
+      if ((reaches >> nb & 1) != 0) {
+        // Homes of two threads may share a neighbour: the mark is an atomic store of the same 1.
+        std::atomic_ref<std::uint8_t>(mark[static_cast<std::size_t>(neighbours_[hs][nb])])
+            .store(1, std::memory_order_relaxed);
+      }
     }
   }
   live_.clear();

@@ -76,8 +76,8 @@ class SparseGrid {
   // The blocks that the last rebuild's stencils reach, in memory order (the curve's). The nodes
   // of every other block are zero, and must stay so: a block kept from step to step may be
   // reached again later, and rebuild() zeroes only the blocks that were reached. A grid rule
-  // writes to nodes of these blocks only (and, to sum in a fresh grid's order, visits them in
-  // this order).
+  // writes to nodes of these blocks only (and sums in an order fixed by this one, so that a
+  // fresh grid and a kept one give the same bits; see GridRule::apply).
   [[nodiscard]] std::span<const int> live_blocks() const { return live_; }
   // How many calls of rebuild() made the blocks again (the others kept them).
   [[nodiscard]] long full_rebuilds() const { return full_rebuilds_; }

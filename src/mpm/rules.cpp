@@ -5,52 +5,84 @@
 
 namespace snapjump::mpm {
 
+// Both rules visit the live blocks in parallel, each block's sum apart, and add the blocks' sums
+// in the blocks' order: the same bits at any thread count.
+
 void ClampRule::apply(SparseGrid& grid, const StepContext& ctx) {
-  double impulse_z = 0.0;
-  for (const int live : grid.live_blocks()) {
-    const auto b = static_cast<std::size_t>(live);
+  const auto live = grid.live_blocks();
+  const long nl = static_cast<long>(live.size());
+  block_impulse_.assign(live.size(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < nl; ++k) {
+    const auto b = static_cast<std::size_t>(live[static_cast<std::size_t>(k)]);
     if ((grid.block_tags[b] & tag_) == 0) continue;
+    double impulse_z = 0.0;
     for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
-      if ((grid.tags[a] & tag_) == 0 || grid.nodes[a].m <= 0.0) continue;
-      const double target = grid.nodes[a].m * body_.vz;
-      impulse_z += target - grid.nodes[a].pz;
-      grid.nodes[a].px = 0.0;
-      grid.nodes[a].py = 0.0;
-      grid.nodes[a].pz = target;
+      auto& g = grid.nodes[a];
+      if ((grid.tags[a] & tag_) == 0 || g.m <= 0.0) continue;
+      const double target = g.m * body_.vz;
+      impulse_z += target - g.pz;
+      g.px = 0.0;
+      g.py = 0.0;
+      g.pz = target;
     }
+    block_impulse_[static_cast<std::size_t>(k)] = impulse_z;
   }
+  double impulse_z = 0.0;
+  for (const double i : block_impulse_) impulse_z += i;
   // The body pushed the shell by impulse_z; the shell pushes the body back.
   body_.clamp_force = -impulse_z / ctx.dt;
 }
 
 void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
-  double normal = 0.0, tangential = 0.0;
+  const auto live = grid.live_blocks();
+  const long nl = static_cast<long>(live.size());
+  block_sums_.assign(2 * live.size(), 0.0);
   loaded_.clear();
-  for (const int live : grid.live_blocks()) {
-    const auto b = static_cast<std::size_t>(live);
-    // Only blocks that hold a node layer z = 0, -dx, ..., -(layers - 1) dx.
-    const std::int64_t k0 = grid.block_coords(b)[2] * kBlock;
-    if (k0 > 0 || k0 + kBlock - 1 <= -layers_) continue;
-    for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
-      if (grid.nodes[a].m <= 0.0 || grid.nodes[a].pz >= 0.0) continue;
-      const auto c = grid.coords(a);
-      if (c[2] > 0 || c[2] <= -layers_) continue;
-      const double dpn = -grid.nodes[a].pz;  // normal impulse given by the plate (upward)
-      grid.nodes[a].pz = 0.0;
-      loaded_.push_back(c);
-      normal += dpn;
-      const double pt = std::hypot(grid.nodes[a].px, grid.nodes[a].py);
-      if (pt > 0.0 && mu_ > 0.0) {
-        const double reduced = std::max(0.0, pt - mu_ * dpn);
-        tangential += pt - reduced;
-        grid.nodes[a].px *= reduced / pt;
-        grid.nodes[a].py *= reduced / pt;
+#pragma omp parallel
+  {
+    std::vector<std::array<std::int64_t, 3>> loaded;  // this thread's
+#pragma omp for schedule(static) nowait
+    for (long k = 0; k < nl; ++k) {
+      const auto b = static_cast<std::size_t>(live[static_cast<std::size_t>(k)]);
+      // Only blocks that hold a node layer z = 0, -dx, ..., -(layers - 1) dx.
+      const auto& bc = grid.block_coords(b);
+      const std::int64_t k0 = bc[2] * kBlock;
+      if (k0 > 0 || k0 + kBlock - 1 <= -layers_) continue;
+      double normal = 0.0, tangential = 0.0;
+      for (int l = 0; l < kBlockNodes; ++l) {
+        auto& g = grid.nodes[b * kBlockNodes + static_cast<std::size_t>(l)];
+        if (g.m <= 0.0 || g.pz >= 0.0) continue;
+        const std::int64_t cz = k0 + l % kBlock;
+        if (cz > 0 || cz <= -layers_) continue;
+        const double dpn = -g.pz;  // normal impulse given by the plate (upward)
+        g.pz = 0.0;
+        loaded.push_back(
+            {bc[0] * kBlock + l / (kBlock * kBlock), bc[1] * kBlock + (l / kBlock) % kBlock, cz});
+        normal += dpn;
+        const double pt = std::hypot(g.px, g.py);
+        if (pt > 0.0 && mu_ > 0.0) {
+          const double reduced = std::max(0.0, pt - mu_ * dpn);
+          tangential += pt - reduced;
+          g.px *= reduced / pt;
+          g.py *= reduced / pt;
+        }
       }
+      block_sums_[2 * static_cast<std::size_t>(k)] = normal;
+      block_sums_[2 * static_cast<std::size_t>(k) + 1] = tangential;
     }
+#pragma omp critical(snapjump_plate_loaded)
+    loaded_.insert(loaded_.end(), loaded.begin(), loaded.end());
+  }
+  // (the threads' lists joined in any order: the sort below makes it one)
+  std::sort(loaded_.begin(), loaded_.end());
+  double normal = 0.0, tangential = 0.0;
+  for (std::size_t k = 0; k < live.size(); ++k) {
+    normal += block_sums_[2 * k];
+    tangential += block_sums_[2 * k + 1];
   }
   force_ = normal / ctx.dt;
   friction_ = tangential / ctx.dt;
-  std::sort(loaded_.begin(), loaded_.end());
 }
 
 bool plate_carries(const PlateRule& plate, double dx, double x, double y, double z) {

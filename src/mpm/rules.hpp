@@ -26,7 +26,8 @@ class GridRule {
   virtual ~GridRule() = default;
   [[nodiscard]] virtual std::string_view name() const = 0;
   // Changes the grid's momentum between the transfers. Writes only to the nodes of
-  // grid.live_blocks() (see there), visited in that order.
+  // grid.live_blocks() (see there). A sum over nodes must not depend on the thread count: the
+  // rules here sum each block apart, in parallel, and add the blocks' sums in their order.
   virtual void apply(SparseGrid& grid, const StepContext& ctx) = 0;
 };
 
@@ -45,6 +46,7 @@ class ClampRule final : public GridRule {
  private:
   RigidBody& body_;
   std::uint8_t tag_;
+  std::vector<double> block_impulse_;  // per live block, in their order
 };
 
 // The rigid plate with top surface z = 0: on the node layers z = 0, -dx, -2dx, momentum moving
@@ -71,6 +73,7 @@ class PlateRule final : public GridRule {
   double force_ = 0.0;
   double friction_ = 0.0;
   std::vector<std::array<std::int64_t, 3>> loaded_;
+  std::vector<double> block_sums_;  // per live block: normal, tangential impulse
 };
 
 // How much of a particle at x is held by the plate: the sum of its quadratic B-spline weights on

@@ -10,6 +10,11 @@ namespace {
 // A call at the most threads that takes this many times the one-thread median ends the trial at
 // once: under load one such call costs as much as dozens of ordinary ones.
 constexpr double kHopeless = 4.0;
+// A trial that finds one thread faster by less than this factor is a close call: on a shared
+// virtual machine such a verdict often comes from a moment when the other core was taken (its
+// steps are then briefly no faster than one thread's), so the next trial comes after a sixteenth
+// of the period. A clear verdict (a loaded core) waits the whole period.
+constexpr double kClose = 1.25;
 }  // namespace
 
 ScopedThreadCount::ScopedThreadCount(int threads) : previous_(omp_get_max_threads()) {
@@ -24,6 +29,7 @@ ThreadTuner::ThreadTuner(int max_threads, int trial, int period)
     : max_(std::max(1, max_threads)),
       trial_(trial),
       period_(period),
+      settled_for_(period),
       current_(max_),
       chosen_(max_) {
   if (trial < 1 || period < 2 * trial) {
@@ -75,16 +81,20 @@ void ThreadTuner::record(double seconds) {
       one_median_ = median(one_);
       const bool hopeless = seconds > kHopeless * one_median_;
       if (hopeless || static_cast<int>(many_.size()) == trial_) {
-        chosen_ = !hopeless && median(many_) < one_median_ ? max_ : 1;
+        const double many_median = median(many_);
+        chosen_ = !hopeless && many_median < one_median_ ? max_ : 1;
         current_ = chosen_;
         phase_ = Phase::Settled;
         ++trials_;
         since_trial_ = 0;
+        const bool close = chosen_ == 1 && !hopeless && many_median < kClose * one_median_;
+        settled_for_ = close ? std::max(2 * trial_, period_ / 16) : period_;
+        if (close) ++close_calls_;
       }
       return;
     }
     case Phase::Settled:
-      if (++since_trial_ >= period_) {
+      if (++since_trial_ >= settled_for_) {
         start_trial();
       } else if (chosen_ > 1 && !watch(seconds)) {
         ++early_trials_;

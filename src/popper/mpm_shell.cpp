@@ -9,6 +9,7 @@
 
 #include "io/vtu.hpp"
 #include "mesh/msh_reader.hpp"
+#include "parallel/threads.hpp"
 #include "popper/state_io.hpp"
 
 namespace snapjump::popper {
@@ -191,7 +192,15 @@ void MpmShell::zero_velocities() {
 double MpmShell::kinetic_energy() const {
   return stepper_ ? stepper_->kinetic_energy() : driver_->kinetic_energy();
 }
-double MpmShell::strain_energy() const { return body_->strain_energy(positions()); }
+double MpmShell::strain_energy() const {
+  // A sample's one parallel loop runs at the step's chosen thread count: under load a region at
+  // two threads waits for a descheduled thread, as a step would (parallel::ThreadTuner).
+  const int chosen = stepper_  ? stepper_->thread_tuner().chosen()
+                     : driver_ ? driver_->thread_tuner().chosen()
+                               : parallel::max_threads();
+  const parallel::ScopedThreadCount threads(chosen);
+  return body_->strain_energy(positions());
+}
 double MpmShell::potential_energy(double g) const {
   const auto& p = stepper_->particles();
   double pot = 0.0;

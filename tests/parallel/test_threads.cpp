@@ -99,6 +99,32 @@ TEST(Threads, TunerRetriesAtOnceAfterAHopelessCall) {
   EXPECT_EQ(t.next(), 1);
 }
 
+// A trial in which two threads are barely slower than one (the other core briefly taken): one
+// thread is chosen, and the next trial comes after a sixteenth of the period (here 2 trials'
+// length, the least allowed) instead of the whole period; it finds two threads faster again.
+// A clear verdict (two threads 1.5 times slower) waits the whole period.
+TEST(Threads, TunerTriesAgainSoonAfterACloseCall) {
+  ThreadTuner t(2, 4, 64);
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 1.1, 4);
+  EXPECT_EQ(t.chosen(), 1);
+  EXPECT_EQ(t.close_calls(), 1);
+  feed(t, 1, 1.0, 8);  // max(2 * 4, 64 / 16) calls
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 0.6, 4);
+  EXPECT_EQ(t.chosen(), 2);
+  EXPECT_EQ(t.trials(), 2);
+  // After a clear verdict the whole period passes before the next trial.
+  feed(t, 2, 0.6, 64);
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 1.5, 4);
+  EXPECT_EQ(t.chosen(), 1);
+  EXPECT_EQ(t.close_calls(), 1);
+  feed(t, 1, 1.0, 64);
+  EXPECT_EQ(t.trials(), 3);
+  EXPECT_EQ(t.next(), 1);  // the next trial's first call
+}
+
 TEST(Threads, OneThreadAllowedMeansNoTrial) {
   ThreadTuner t(1);
   feed(t, 1, 1.0, 10);
