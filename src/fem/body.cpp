@@ -182,6 +182,22 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
   if (!mesh_.inner_faces.empty() && !mesh_.clamped.empty() && inner_rim_.empty()) {
     throw mesh::MeshError("no inner face reaches the clamped rim: the cavity is not closed by it");
   }
+  // Each node's inner faces, in face order (face * 6 + local node).
+  face_incidence_start_.assign(nn + 1, 0);
+  for (const auto& f : mesh_.inner_faces) {
+    for (int a : f) ++face_incidence_start_[static_cast<std::size_t>(a) + 1];
+  }
+  for (std::size_t a = 0; a < nn; ++a) face_incidence_start_[a + 1] += face_incidence_start_[a];
+  face_incidence_.resize(static_cast<std::size_t>(face_incidence_start_[nn]));
+  {
+    std::vector<int> fill(face_incidence_start_.begin(), face_incidence_start_.end() - 1);
+    for (std::size_t f = 0; f < mesh_.inner_faces.size(); ++f) {
+      for (int k = 0; k < kTriNodes; ++k) {
+        face_incidence_[static_cast<std::size_t>(fill[mesh_.inner_faces[f][k]]++)] =
+            static_cast<int>(f) * kTriNodes + k;
+      }
+    }
+  }
   incidence_start_.assign(nn + 1, 0);
   for (const auto& tet : mesh_.tets) {
     for (int a : tet) ++incidence_start_[static_cast<std::size_t>(a) + 1];
@@ -403,41 +419,58 @@ std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
 
 namespace {
 
-// Calls visit(face, N, area_vector * weight, position) at each quadrature point of each face;
-// area_vector = dx/dr x dx/ds. The shape functions at the rule's points are evaluated once per
-// call and each face's nodes gathered once (the sums are those of a point-by-point evaluation).
-template <typename Visit>
-void integrate_faces(const std::vector<std::array<int, 6>>& faces, const mesh::Points& x,
-                     Visit&& visit) {
-  const auto rule = tri_rule_degree4();
-  constexpr std::size_t kMaxPoints = 8;
-  if (rule.size() > kMaxPoints) throw std::logic_error("integrate_faces: rule too long");
+// The inner faces' quadrature rule with its shape functions and their gradients at each point.
+struct FaceRule {
+  static constexpr std::size_t kMaxPoints = 8;
+  std::size_t size = 0;
+  std::array<double, kMaxPoints> weight{};
   std::array<std::array<double, kTriNodes>, kMaxPoints> N{};
   std::array<std::array<std::array<double, 2>, kTriNodes>, kMaxPoints> G{};
+};
+FaceRule face_rule() {
+  const auto rule = tri_rule_degree4();
+  if (rule.size() > FaceRule::kMaxPoints) throw std::logic_error("face_rule: rule too long");
+  FaceRule r;
+  r.size = rule.size();
   for (std::size_t q = 0; q < rule.size(); ++q) {
-    N[q] = tri6_shape(rule[q].r, rule[q].s);
-    G[q] = tri6_shape_gradients(rule[q].r, rule[q].s);
+    r.weight[q] = rule[q].weight;
+    r.N[q] = tri6_shape(rule[q].r, rule[q].s);
+    r.G[q] = tri6_shape_gradients(rule[q].r, rule[q].s);
   }
-  for (const auto& face : faces) {
+  return r;
+}
+
+// At each quadrature point q of each face f: the area vector w dx/dr x dx/ds into
+// n[3 (f * points + q) ..] and, unless p is null, the position into p likewise. In parallel over
+// the faces; each value is the same at any thread count.
+void face_points(const FaceRule& rule, const std::vector<std::array<int, 6>>& faces,
+                 const mesh::Points& x, double* n, double* p) {
+  const long nf = static_cast<long>(faces.size());
+  const std::size_t nq = rule.size;
+#pragma omp parallel for schedule(static)
+  for (long f = 0; f < nf; ++f) {
+    const auto& face = faces[static_cast<std::size_t>(f)];
     double xa[kTriNodes][3];
     for (int a = 0; a < kTriNodes; ++a) {
       xa[a][0] = x.x[face[a]];
       xa[a][1] = x.y[face[a]];
       xa[a][2] = x.z[face[a]];
     }
-    for (std::size_t q = 0; q < rule.size(); ++q) {
-      double p[3] = {}, dr[3] = {}, ds[3] = {};
+    for (std::size_t q = 0; q < nq; ++q) {
+      double pq[3] = {}, dr[3] = {}, ds[3] = {};
       for (int a = 0; a < kTriNodes; ++a) {
         for (int i = 0; i < 3; ++i) {
-          p[i] += N[q][a] * xa[a][i];
-          dr[i] += G[q][a][0] * xa[a][i];
-          ds[i] += G[q][a][1] * xa[a][i];
+          pq[i] += rule.N[q][a] * xa[a][i];
+          dr[i] += rule.G[q][a][0] * xa[a][i];
+          ds[i] += rule.G[q][a][1] * xa[a][i];
         }
       }
-      const double w = rule[q].weight;
-      const double n[3] = {w * (dr[1] * ds[2] - dr[2] * ds[1]), w * (dr[2] * ds[0] - dr[0] * ds[2]),
-                           w * (dr[0] * ds[1] - dr[1] * ds[0])};
-      visit(face, N[q], n, p);
+      const double w = rule.weight[q];
+      const std::size_t at = 3 * (static_cast<std::size_t>(f) * nq + q);
+      n[at] = w * (dr[1] * ds[2] - dr[2] * ds[1]);
+      n[at + 1] = w * (dr[2] * ds[0] - dr[0] * ds[2]);
+      n[at + 2] = w * (dr[0] * ds[1] - dr[1] * ds[0]);
+      if (p != nullptr) std::copy(pq, pq + 3, p + at);
     }
   }
 }
@@ -445,14 +478,34 @@ void integrate_faces(const std::vector<std::array<int, 6>>& faces, const mesh::P
 }  // namespace
 
 void Body::add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f) const {
-  integrate_faces(mesh_.inner_faces, x,
-                  [&](const auto& face, const auto& N, const double* n, const double*) {
-                    for (int a = 0; a < kTriNodes; ++a) {
-                      f.x[face[a]] -= dp * N[a] * n[0];
-                      f.y[face[a]] -= dp * N[a] * n[1];
-                      f.z[face[a]] -= dp * N[a] * n[2];
-                    }
-                  });
+  ForceScratch scratch;
+  add_pressure_forces(x, dp, f, scratch);
+}
+
+// The area vectors of every face point first, then each node adds its faces' shares in face
+// order, point by point: the sums a face-by-face loop would make, at any thread count.
+void Body::add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f,
+                               ForceScratch& scratch) const {
+  const auto rule = face_rule();
+  const std::size_t nq = rule.size;
+  scratch.face_normals.resize(3 * nq * mesh_.inner_faces.size());
+  const double* n = scratch.face_normals.data();
+  face_points(rule, mesh_.inner_faces, x, scratch.face_normals.data(), nullptr);
+  const long nn = static_cast<long>(num_nodes());
+#pragma omp parallel for schedule(static)
+  for (long a = 0; a < nn; ++a) {
+    const auto as = static_cast<std::size_t>(a);
+    for (int k = face_incidence_start_[as]; k < face_incidence_start_[as + 1]; ++k) {
+      const auto slot = static_cast<std::size_t>(face_incidence_[static_cast<std::size_t>(k)]);
+      const std::size_t face = slot / kTriNodes, local = slot % kTriNodes;
+      for (std::size_t q = 0; q < nq; ++q) {
+        const double* nv = n + 3 * (face * nq + q);
+        f.x[as] -= dp * rule.N[q][local] * nv[0];
+        f.y[as] -= dp * rule.N[q][local] * nv[1];
+        f.z[as] -= dp * rule.N[q][local] * nv[2];
+      }
+    }
+  }
 }
 
 double Body::cavity_volume(const mesh::Points& x) const {
@@ -468,11 +521,14 @@ double Body::cavity_volume(const mesh::Points& x) const {
     c[2] += x.z[a];
   }
   for (double& v : c) v /= static_cast<double>(inner_rim_.size());
-  double volume = 0.0;
-  integrate_faces(mesh_.inner_faces, x,
-                  [&](const auto&, const auto&, const double* n, const double* p) {
-                    volume += (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2];
-                  });
+  const auto rule = face_rule();
+  const std::size_t points = rule.size * mesh_.inner_faces.size();
+  std::vector<double> n(3 * points), p(3 * points);
+  face_points(rule, mesh_.inner_faces, x, n.data(), p.data());
+  double volume = 0.0;  // point by point, in face order
+  for (std::size_t k = 0; k < 3 * points; k += 3) {
+    volume += (p[k] - c[0]) * n[k] + (p[k + 1] - c[1]) * n[k + 1] + (p[k + 2] - c[2]) * n[k + 2];
+  }
   return volume / 3.0;
 }
 

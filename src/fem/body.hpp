@@ -66,6 +66,7 @@ class Body {
   // Working memory of internal_forces: one per caller that calls it every step.
   struct ForceScratch {
     std::vector<double> element_forces;  // [element][node][3]
+    std::vector<double> face_normals;    // [inner face][quadrature point][3]
   };
   // f = -dW/dx at positions x (overwrites f). Throws InvertedElement (the lowest-numbered
   // inverted element). The same bits at any thread count.
@@ -79,6 +80,8 @@ class Body {
   // f += the follower load of a pressure difference dp (outside minus inside) on the current
   // inner faces: f_a = -dp * integral of N_a n dA, n out of the cavity. Equals -dp dV/dx_a.
   void add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f) const;
+  void add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f,
+                           ForceScratch& scratch) const;
   // Volume between the current inner surface and the plane of its rim (the rim nodes move
   // rigidly with the container, which keeps that plane flat).
   [[nodiscard]] double cavity_volume(const mesh::Points& x) const;
@@ -112,6 +115,9 @@ class Body {
   // incidence_start_[a + 1]), each as element * 10 + local node, in element order.
   std::vector<int> incidence_start_;
   std::vector<int> incidence_;
+  // The inner faces at each node, likewise (face * 6 + local node, in face order).
+  std::vector<int> face_incidence_start_;
+  std::vector<int> face_incidence_;
 };
 
 }  // namespace snapjump::fem

@@ -20,7 +20,7 @@ class BodyForces final : public ForceProvider {
 
   void forces(const mesh::Points& x, double t, mesh::Points& f) override {
     body_.internal_forces(x, f, scratch_);
-    if (pressure_) body_.add_pressure_forces(x, pressure_(t), f);
+    if (pressure_) body_.add_pressure_forces(x, pressure_(t), f, scratch_);
     if (gravity_ != 0.0) body_.add_gravity(gravity_, f);
   }
 

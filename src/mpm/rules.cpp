@@ -74,8 +74,7 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
 #pragma omp critical(snapjump_plate_loaded)
     loaded_.insert(loaded_.end(), loaded.begin(), loaded.end());
   }
-  // (the threads' lists joined in any order: the sort below makes it one)
-  std::sort(loaded_.begin(), loaded_.end());
+  loaded_sorted_ = false;  // (the threads' lists joined in any order: loaded_nodes() sorts)
   double normal = 0.0, tangential = 0.0;
   for (std::size_t k = 0; k < live.size(); ++k) {
     normal += block_sums_[2 * k];
@@ -83,6 +82,14 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
   }
   force_ = normal / ctx.dt;
   friction_ = tangential / ctx.dt;
+}
+
+const std::vector<std::array<std::int64_t, 3>>& PlateRule::loaded_nodes() const {
+  if (!loaded_sorted_) {
+    std::sort(loaded_.begin(), loaded_.end());
+    loaded_sorted_ = true;
+  }
+  return loaded_;
 }
 
 bool plate_carries(const PlateRule& plate, double dx, double x, double y, double z) {

@@ -61,18 +61,17 @@ class PlateRule final : public GridRule {
   // Reaction force on the body from the plate in the last step (up is positive) [N].
   [[nodiscard]] double force() const { return force_; }
   [[nodiscard]] double friction_force() const { return friction_; }
-  // Grid coordinates of the nodes that took a normal impulse in the last step: where the plate
-  // carries load.
-  [[nodiscard]] const std::vector<std::array<std::int64_t, 3>>& loaded_nodes() const {
-    return loaded_;
-  }
+  // Grid coordinates of the nodes that took a normal impulse in the last step, sorted: where the
+  // plate carries load. (Sorted when first asked for after a step: samples ask, steps do not.)
+  [[nodiscard]] const std::vector<std::array<std::int64_t, 3>>& loaded_nodes() const;
 
  private:
   double mu_;
   int layers_;
   double force_ = 0.0;
   double friction_ = 0.0;
-  std::vector<std::array<std::int64_t, 3>> loaded_;
+  mutable std::vector<std::array<std::int64_t, 3>> loaded_;
+  mutable bool loaded_sorted_ = true;
   std::vector<double> block_sums_;  // per live block: normal, tangential impulse
 };
 

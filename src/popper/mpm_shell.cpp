@@ -192,13 +192,17 @@ void MpmShell::zero_velocities() {
 double MpmShell::kinetic_energy() const {
   return stepper_ ? stepper_->kinetic_energy() : driver_->kinetic_energy();
 }
+// The step's chosen thread count, for the parallel loops between steps (a sample's strain energy,
+// the gas's cavity volume): under load a region at two threads waits for a descheduled thread,
+// as a step would (parallel::ThreadTuner).
+int MpmShell::chosen_threads() const {
+  if (stepper_) return stepper_->thread_tuner().chosen();
+  if (driver_) return driver_->thread_tuner().chosen();
+  return parallel::max_threads();
+}
+
 double MpmShell::strain_energy() const {
-  // A sample's one parallel loop runs at the step's chosen thread count: under load a region at
-  // two threads waits for a descheduled thread, as a step would (parallel::ThreadTuner).
-  const int chosen = stepper_  ? stepper_->thread_tuner().chosen()
-                     : driver_ ? driver_->thread_tuner().chosen()
-                               : parallel::max_threads();
-  const parallel::ScopedThreadCount threads(chosen);
+  const parallel::ScopedThreadCount threads(chosen_threads());
   return body_->strain_energy(positions());
 }
 double MpmShell::potential_energy(double g) const {
@@ -207,7 +211,10 @@ double MpmShell::potential_energy(double g) const {
   for (std::size_t i = 0; i < p.size(); ++i) pot += p.mass[i] * g * p.x.z[i];
   return pot;
 }
-double MpmShell::cavity_volume() const { return body_->cavity_volume(positions()); }
+double MpmShell::cavity_volume() const {
+  const parallel::ScopedThreadCount threads(chosen_threads());
+  return body_->cavity_volume(positions());
+}
 double MpmShell::apex_z() const { return positions().z[body_->mesh().apex]; }
 double MpmShell::outer_rim_z() const { return outer_rim_z(positions()); }
 

@@ -67,6 +67,7 @@ class MpmShell final : public ShellModel {
 
  private:
   [[nodiscard]] const mesh::Points& positions() const;
+  [[nodiscard]] int chosen_threads() const;
   [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
   void build_stepper(mpm::Particles particles, core::RigidBody& container, double mu,
                      double damping);

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <memory>
 #include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "fem/body.hpp"
@@ -243,7 +244,7 @@ TEST(Threads, AStepperMadeAgainFromItsParticlesStepsOnAsTheFirstOne) {
   }
 }
 
-TEST(Threads, InternalForcesAndExplicitStepsAreTheSameAtOneAndFourThreads) {
+TEST(Threads, InternalForcesPressureVolumeAndExplicitStepsAreTheSameAtOneAndFourThreads) {
   for (const auto bulk : {fem::BulkRule::full, fem::BulkRule::centroid}) {
     SCOPED_TRACE(bulk == fem::BulkRule::full ? "bulk at four points" : "bulk at the centroid");
     const auto shell = small_cap(bulk);
@@ -256,12 +257,18 @@ TEST(Threads, InternalForcesAndExplicitStepsAreTheSameAtOneAndFourThreads) {
       for (int k = 0; k < 100; ++k) d.step();
       mesh::Points f;
       shell.internal_forces(d.positions(), f);
-      return std::pair{d.positions(), f};
+      // The pressure load and the cavity volume at the deformed positions (both in parallel
+      // over the faces).
+      mesh::Points g;
+      shell.cavity_volume_gradient(d.positions(), g);
+      return std::tuple{d.positions(), f, g, std::vector{shell.cavity_volume(d.positions())}};
     };
-    const auto [x1, f1] = run(1);
-    const auto [x4, f4] = run(4);
+    const auto [x1, f1, g1, v1] = run(1);
+    const auto [x4, f4, g4, v4] = run(4);
     EXPECT_TRUE(same_bits(x1.x, x4.x) && same_bits(x1.y, x4.y) && same_bits(x1.z, x4.z));
     EXPECT_TRUE(same_bits(f1.x, f4.x) && same_bits(f1.y, f4.y) && same_bits(f1.z, f4.z));
+    EXPECT_TRUE(same_bits(g1.x, g4.x) && same_bits(g1.y, g4.y) && same_bits(g1.z, g4.z));
+    EXPECT_TRUE(same_bits(v1, v4));
   }
 }
 
