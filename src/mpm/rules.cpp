@@ -49,16 +49,19 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
       const auto& bc = grid.block_coords(b);
       const std::int64_t k0 = bc[2] * kBlock;
       if (k0 > 0 || k0 + kBlock - 1 <= -layers_) continue;
+      // The block's nodes on those layers: local z from lz0 to lz1.
+      const int lz0 = static_cast<int>(std::max<std::int64_t>(0, 1 - layers_ - k0));
+      const int lz1 = static_cast<int>(std::min<std::int64_t>(kBlock - 1, -k0));
       double normal = 0.0, tangential = 0.0;
-      for (int l = 0; l < kBlockNodes; ++l) {
+      for (int l = 0; l < kBlockNodes; ++l) {  // in memory order
+        const int lz = l % kBlock;
+        if (lz < lz0 || lz > lz1) continue;
         auto& g = grid.nodes[b * kBlockNodes + static_cast<std::size_t>(l)];
         if (g.m <= 0.0 || g.pz >= 0.0) continue;
-        const std::int64_t cz = k0 + l % kBlock;
-        if (cz > 0 || cz <= -layers_) continue;
         const double dpn = -g.pz;  // normal impulse given by the plate (upward)
         g.pz = 0.0;
-        loaded.push_back(
-            {bc[0] * kBlock + l / (kBlock * kBlock), bc[1] * kBlock + (l / kBlock) % kBlock, cz});
+        loaded.push_back({bc[0] * kBlock + l / (kBlock * kBlock),
+                          bc[1] * kBlock + (l / kBlock) % kBlock, k0 + lz});
         normal += dpn;
         const double pt = std::hypot(g.px, g.py);
         if (pt > 0.0 && mu_ > 0.0) {

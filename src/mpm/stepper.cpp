@@ -135,12 +135,15 @@ void Stepper::particle_to_grid() {
 
 void Stepper::rebuild_grid() { grid_.rebuild(p_.x); }
 
+// One parallel region for the eight colours: the threads meet at each colour's barrier but are
+// not started again for each.
 void Stepper::scatter_to_grid() {
+#pragma omp parallel
   for (int colour = 0; colour < 8; ++colour) {
     const auto& homes = grid_.homes_of_colour(colour);
     const auto& tasks = grid_.tasks_of_colour(colour);
     const int nt = static_cast<int>(tasks.size()) - 1;
-#pragma omp parallel for schedule(static)
+#pragma omp for schedule(static)
     for (int task = 0; task < nt; ++task) {
       for (int k = tasks[task]; k < tasks[task + 1]; ++k) {
         for (const int i : grid_.particles_of(homes[k])) scatter(static_cast<std::size_t>(i));
