@@ -2,6 +2,11 @@
 // prints milliseconds per step (and the fastest, 10th-percentile and median whole step). Usage:
 // profile_step [coarse|default|fine] (default: default). The mesh's nodes are in the curve order
 // the popper uses (mesh::sort_along_curve); with UNSORTED set in the environment, in gmsh's order.
+//
+// profile_step release [steps]: the phase a run spends its time in. The default popper prepared
+// as `snapjump run` prepares it (about half a minute), released, 200 steps untimed, then `steps`
+// (default 3000) whole popper steps (the MPM step, the gas) timed, with a sample every probe
+// interval as a run takes it; prints milliseconds per step and what the thread tuner did.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -14,12 +19,68 @@
 #include "hybrid/body_forces.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mpm/stepper.hpp"
+#include "popper/mpm_shell.hpp"
 #include "popper/popper.hpp"
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+int profile_release(int steps) {
+  using namespace snapjump;
+  const auto c = config::default_case();
+  const auto numerics = popper::resolve_numerics(c);
+  popper::Popper pop(c, numerics);
+  const auto prep = pop.prepare();
+  if (!prep.held) {
+    std::fprintf(stderr, "profile_step: the preparation failed: %s\n", prep.message.c_str());
+    return 1;
+  }
+  pop.release();
+  for (int k = 0; k < 200; ++k) pop.step();
+  const auto& tuner = dynamic_cast<const popper::MpmShell&>(pop.model()).stepper().thread_tuner();
+  const long trials_before = tuner.trials(), early_before = tuner.early_trials();
+  const int every = std::max(1, static_cast<int>(std::lround(numerics.probe_interval / pop.dt())));
+  std::vector<double> whole;
+  long at_many = 0;
+  const auto start = Clock::now();
+  for (int k = 0; k < steps; ++k) {
+    if (tuner.next() > 1) ++at_many;
+    const auto a = Clock::now();
+    pop.step();
+    whole.push_back(std::chrono::duration<double, std::milli>(Clock::now() - a).count());
+    if ((k + 1) % every == 0) (void)pop.sample();
+  }
+  const double total = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  std::sort(whole.begin(), whole.end());
+  std::printf("release phase of the default popper: %d steps from t = %.4f s, a sample every %d\n",
+              steps, pop.time() - steps * pop.dt(), every);
+  std::printf(
+      "ms per step (samples included): %.3f; whole steps: 10th percentile %.3f ms, median "
+      "%.3f ms\n",
+      total / steps, whole[whole.size() / 10], whole[whole.size() / 2]);
+  std::printf(
+      "threads: more than one in %ld of %d steps (at most %d); tuner trials %ld, of them "
+      "started early %ld\n",
+      at_many, steps, tuner.max_threads(), tuner.trials() - trials_before,
+      tuner.early_trials() - early_before);
+  return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace snapjump;
   auto c = config::default_case();
   const std::string preset = argc > 1 ? argv[1] : "default";
+  if (preset == "release") {
+    const int steps = argc > 2 ? std::atoi(argv[2]) : 3000;
+    if (steps < 1) {
+      std::fprintf(stderr, "profile_step release: the step count must be a positive number\n");
+      return 1;
+    }
+    return profile_release(steps);
+  }
   if (preset == "coarse") c.numerics.resolution = config::Resolution::Coarse;
   if (preset == "fine") c.numerics.resolution = config::Resolution::Fine;
   const auto numerics = popper::resolve_numerics(c);
@@ -36,7 +97,6 @@ int main(int argc, char** argv) {
   s.add_rule(std::make_unique<mpm::ClampRule>(container));
   s.add_rule(std::make_unique<mpm::PlateRule>(0.3));
   s.add_rigid_body(container);
-  using Clock = std::chrono::steady_clock;
   const auto ms = [](Clock::time_point a, Clock::time_point b) {
     return std::chrono::duration<double, std::milli>(b - a).count();
   };
