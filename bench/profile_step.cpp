@@ -39,7 +39,8 @@ int profile_release(int steps) {
   pop.release();
   for (int k = 0; k < 200; ++k) pop.step();
   const auto& tuner = dynamic_cast<const popper::MpmShell&>(pop.model()).stepper().thread_tuner();
-  const long trials_before = tuner.trials(), early_before = tuner.early_trials();
+  const long trials_before = tuner.trials(), early_before = tuner.early_trials(),
+             close_before = tuner.close_calls();
   const int every = std::max(1, static_cast<int>(std::lround(numerics.probe_interval / pop.dt())));
   std::vector<double> whole;
   long at_many = 0;
@@ -61,9 +62,9 @@ int profile_release(int steps) {
       total / steps, whole[whole.size() / 10], whole[whole.size() / 2]);
   std::printf(
       "threads: more than one in %ld of %d steps (at most %d); tuner trials %ld, of them "
-      "started early %ld\n",
+      "started early %ld; one thread chosen by a close call %ld times\n",
       at_many, steps, tuner.max_threads(), tuner.trials() - trials_before,
-      tuner.early_trials() - early_before);
+      tuner.early_trials() - early_before, tuner.close_calls() - close_before);
   return 0;
 }
 
@@ -74,12 +75,19 @@ int main(int argc, char** argv) {
   auto c = config::default_case();
   const std::string preset = argc > 1 ? argv[1] : "default";
   if (preset == "release") {
-    const int steps = argc > 2 ? std::atoi(argv[2]) : 3000;
-    if (steps < 1) {
-      std::fprintf(stderr, "profile_step release: the step count must be a positive number\n");
-      return 1;
+    long steps = 3000;
+    if (argc > 2) {
+      char* end = nullptr;
+      steps = std::strtol(argv[2], &end, 10);
+      if (end == argv[2] || *end != '\0' || steps < 1 || steps > 10'000'000) {
+        std::fprintf(stderr,
+                     "profile_step release: the step count must be a whole number from 1 to "
+                     "10000000 (got '%s')\n",
+                     argv[2]);
+        return 1;
+      }
     }
-    return profile_release(steps);
+    return profile_release(static_cast<int>(steps));
   }
   if (preset == "coarse") c.numerics.resolution = config::Resolution::Coarse;
   if (preset == "fine") c.numerics.resolution = config::Resolution::Fine;

@@ -63,7 +63,8 @@ class Body {
   // dt = factor * min_node_spacing / p_wave_speed (the elastic time step factor).
   [[nodiscard]] double stable_time_step(double factor) const;
 
-  // Working memory of internal_forces: one per caller that calls it every step.
+  // Working memory of internal_forces and add_pressure_forces: one per caller that calls them
+  // every step.
   struct ForceScratch {
     std::vector<double> element_forces;  // [element][node][3]
     std::vector<double> face_normals;    // [inner face][quadrature point][3]

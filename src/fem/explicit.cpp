@@ -30,7 +30,7 @@ void ExplicitDriver::step() {
 
 void ExplicitDriver::advance() {
   body_.internal_forces(x_, f_, scratch_);
-  if (options_.pressure) body_.add_pressure_forces(x_, options_.pressure(time_), f_);
+  if (options_.pressure) body_.add_pressure_forces(x_, options_.pressure(time_), f_, scratch_);
   if (options_.gravity != 0.0) body_.add_gravity(options_.gravity, f_);
   const auto& m = body_.mass();
   const double c = options_.damping * dt_ * 0.5;

@@ -49,10 +49,10 @@ class ClampRule final : public GridRule {
   std::vector<double> block_impulse_;  // per live block, in their order
 };
 
-// The rigid plate with top surface z = 0: on the node layers z = 0, -dx, -2dx, momentum moving
-// into the plate (p_z < 0) loses its normal part, and Coulomb friction takes up to mu times that
-// normal impulse from the tangential momentum, never reversing it. The plate's reaction force is
-// the normal impulse per time step.
+// The rigid plate with top surface z = 0: on the node layers z = 0, -dx, ..., -(layers - 1) dx
+// (three by default), momentum moving into the plate (p_z < 0) loses its normal part, and Coulomb
+// friction takes up to mu times that normal impulse from the tangential momentum, never reversing
+// it. The plate's reaction force is the normal impulse per time step.
 class PlateRule final : public GridRule {
  public:
   explicit PlateRule(double mu, int layers = 3) : mu_(mu), layers_(layers) {}
@@ -62,7 +62,8 @@ class PlateRule final : public GridRule {
   [[nodiscard]] double force() const { return force_; }
   [[nodiscard]] double friction_force() const { return friction_; }
   // Grid coordinates of the nodes that took a normal impulse in the last step, sorted: where the
-  // plate carries load. (Sorted when first asked for after a step: samples ask, steps do not.)
+  // plate carries load. (Sorted when first asked for after a step: samples ask, steps do not. Not
+  // to be called from two threads at once, nor plate_share / plate_carries on this rule.)
   [[nodiscard]] const std::vector<std::array<std::int64_t, 3>>& loaded_nodes() const;
 
  private:

@@ -360,6 +360,75 @@ TEST(Body, GatheredForcesEqualTheElementSums) {
   }
 }
 
+// The pressure load and the cavity volume, computed face point by face point in parallel and
+// gathered per node, are the bits of a plain loop over the faces and their quadrature points
+// (the area vector w dx/dr x dx/ds at each point): the gather keeps the loop's order of sums.
+TEST(Body, GatheredPressureLoadAndVolumeEqualTheFaceByFaceSums) {
+  const auto& body = coarse_cap();
+  auto x = body.mesh().nodes;
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 5e-5);
+  for (auto* v : {&x.x, &x.y, &x.z}) {
+    for (double& c : *v) c += noise(rng);
+  }
+  mesh::Points f, ref;
+  for (auto* p : {&f, &ref}) {
+    p->x.assign(x.size(), 0.25);
+    p->y.assign(x.size(), -0.5);
+    p->z.assign(x.size(), 1.0);
+  }
+  const double dp = 987.6;
+  body.add_pressure_forces(x, dp, f);
+  // The rim centre: the clamped nodes of the inner faces, in their first appearance's order.
+  std::vector<char> clamped(x.size(), 0), seen(x.size(), 0);
+  for (int a : body.mesh().clamped) clamped[a] = 1;
+  double c[3] = {};
+  int rim = 0;
+  for (const auto& face : body.mesh().inner_faces) {
+    for (int a : face) {
+      if (clamped[a] && !seen[a]) {
+        seen[a] = 1;
+        c[0] += x.x[a];
+        c[1] += x.y[a];
+        c[2] += x.z[a];
+        ++rim;
+      }
+    }
+  }
+  for (double& v : c) v /= rim;
+  double volume = 0.0;
+  for (const auto& face : body.mesh().inner_faces) {
+    for (const auto& q : mesh::tri_rule_degree4()) {
+      const auto N = mesh::tri6_shape(q.r, q.s);
+      const auto G = mesh::tri6_shape_gradients(q.r, q.s);
+      double p[3] = {}, dr[3] = {}, ds[3] = {};
+      for (int a = 0; a < mesh::kTriNodes; ++a) {
+        const double xa[3] = {x.x[face[a]], x.y[face[a]], x.z[face[a]]};
+        for (int i = 0; i < 3; ++i) {
+          p[i] += N[a] * xa[i];
+          dr[i] += G[a][0] * xa[i];
+          ds[i] += G[a][1] * xa[i];
+        }
+      }
+      const double n[3] = {q.weight * (dr[1] * ds[2] - dr[2] * ds[1]),
+                           q.weight * (dr[2] * ds[0] - dr[0] * ds[2]),
+                           q.weight * (dr[0] * ds[1] - dr[1] * ds[0])};
+      for (int a = 0; a < mesh::kTriNodes; ++a) {
+        ref.x[face[a]] -= dp * N[a] * n[0];
+        ref.y[face[a]] -= dp * N[a] * n[1];
+        ref.z[face[a]] -= dp * N[a] * n[2];
+      }
+      volume += (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2];
+    }
+  }
+  int differ = 0;
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    differ += f.x[a] != ref.x[a] || f.y[a] != ref.y[a] || f.z[a] != ref.z[a] ? 1 : 0;
+  }
+  EXPECT_EQ(differ, 0) << "nodes whose pressure load differs from the face-by-face sums";
+  EXPECT_EQ(body.cavity_volume(x), volume / 3.0);
+}
+
 // A snapshot that ParaView can use: the node sets as 0/1 point arrays, the time as field data,
 // and the displacement measured from the reference moved with the container, so that a popper
 // lifted as a whole has none.

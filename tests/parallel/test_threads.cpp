@@ -4,6 +4,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cstring>
 #include <memory>
 #include <numbers>
@@ -62,6 +64,7 @@ TEST(Threads, TunerLeavesAHopelessTrialAtOnce) {
   t.record(70.0);
   EXPECT_EQ(t.next(), 1);
   EXPECT_EQ(t.chosen(), 1);
+  EXPECT_EQ(t.close_calls(), 0);  // a hopeless call is no close call: the whole period passes
 }
 
 // A first trial (four calls each) in which two threads are the faster: the tuner settles on two.
@@ -101,29 +104,40 @@ TEST(Threads, TunerRetriesAtOnceAfterAHopelessCall) {
 }
 
 // A trial in which two threads are barely slower than one (the other core briefly taken): one
-// thread is chosen, and the next trial comes after a sixteenth of the period (here 2 trials'
-// length, the least allowed) instead of the whole period; it finds two threads faster again.
-// A clear verdict (two threads 1.5 times slower) waits the whole period.
+// thread is chosen, and the next trial comes after a sixteenth of the period (20 calls here)
+// instead of the whole period; it finds two threads faster again. A clear verdict (two threads
+// 1.5 times slower) waits the whole period.
 TEST(Threads, TunerTriesAgainSoonAfterACloseCall) {
-  ThreadTuner t(2, 4, 64);
+  ThreadTuner t(2, 4, 320);
   feed(t, 1, 1.0, 4);
   feed(t, 2, 1.1, 4);
   EXPECT_EQ(t.chosen(), 1);
   EXPECT_EQ(t.close_calls(), 1);
-  feed(t, 1, 1.0, 8);  // max(2 * 4, 64 / 16) calls
+  feed(t, 1, 1.0, 20);  // 320 / 16 calls, then the trial
   feed(t, 1, 1.0, 4);
   feed(t, 2, 0.6, 4);
   EXPECT_EQ(t.chosen(), 2);
   EXPECT_EQ(t.trials(), 2);
   // After a clear verdict the whole period passes before the next trial.
-  feed(t, 2, 0.6, 64);
+  feed(t, 2, 0.6, 320);
   feed(t, 1, 1.0, 4);
   feed(t, 2, 1.5, 4);
   EXPECT_EQ(t.chosen(), 1);
   EXPECT_EQ(t.close_calls(), 1);
-  feed(t, 1, 1.0, 64);
-  EXPECT_EQ(t.trials(), 3);
-  EXPECT_EQ(t.next(), 1);  // the next trial's first call
+  feed(t, 1, 1.0, 320);
+  feed(t, 1, 1.0, 4);  // the next trial's one-thread calls
+  EXPECT_EQ(t.next(), 2);
+}
+
+// The least wait after a close call is two trials' length (here the period's sixteenth is less).
+TEST(Threads, TunerWaitsAtLeastTwoTrialsAfterACloseCall) {
+  ThreadTuner t(2, 4, 64);
+  feed(t, 1, 1.0, 4);
+  feed(t, 2, 1.1, 4);
+  ASSERT_EQ(t.close_calls(), 1);
+  feed(t, 1, 1.0, 8);
+  feed(t, 1, 1.0, 4);
+  EXPECT_EQ(t.next(), 2);
 }
 
 TEST(Threads, OneThreadAllowedMeansNoTrial) {
@@ -159,6 +173,7 @@ fem::Body small_cap(fem::BulkRule bulk = fem::BulkRule::full) {
 struct StepState {
   mpm::Particles p;
   double container_z = 0.0, plate_force = 0.0;
+  std::vector<std::array<std::int64_t, 3>> loaded;  // the plate's loaded nodes after the last step
 };
 
 // A cap under pressure, clamped to a container, moving down onto the frictional plate: every
@@ -201,7 +216,7 @@ StepState run_steps(const fem::Body& shell, int threads, bool tune, int restart_
     plate_force += plate->force();
     if (blocks_made != nullptr) blocks_made->push_back(s->grid().full_rebuilds());
   }
-  return {s->particles(), container.z, plate_force};
+  return {s->particles(), container.z, plate_force, plate->loaded_nodes()};
 }
 
 TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
@@ -217,7 +232,10 @@ TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
         << threads << " threads";
     EXPECT_EQ(std::memcmp(&one.container_z, &many.container_z, sizeof(double)), 0);
     EXPECT_EQ(std::memcmp(&one.plate_force, &many.plate_force, sizeof(double)), 0);
+    EXPECT_EQ(one.loaded, many.loaded) << threads << " threads";
   }
+  ASSERT_FALSE(one.loaded.empty());
+  EXPECT_TRUE(std::is_sorted(one.loaded.begin(), one.loaded.end()));
   // With the tuner switching between one and two threads on its own.
   const auto tuned = run_steps(shell, 2, true);
   EXPECT_TRUE(same_bits(one.p.x.z, tuned.p.x.z) && same_bits(one.p.C, tuned.p.C));
