@@ -88,6 +88,30 @@ InvertedElement::InvertedElement(int e, double px, double py, double pz)
       y(py),
       z(pz) {}
 
+namespace {
+
+// The items (elements, faces) at each of nn nodes: node a's are list[start[a] .. start[a + 1]),
+// each as item * N + its local node, in item order.
+template <std::size_t N>
+void build_incidence(const std::vector<std::array<int, N>>& items, std::size_t nn,
+                     std::vector<int>& start, std::vector<int>& list) {
+  start.assign(nn + 1, 0);
+  for (const auto& item : items) {
+    for (int a : item) ++start[static_cast<std::size_t>(a) + 1];
+  }
+  for (std::size_t a = 0; a < nn; ++a) start[a + 1] += start[a];
+  list.resize(static_cast<std::size_t>(start[nn]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    for (std::size_t k = 0; k < N; ++k) {
+      list[static_cast<std::size_t>(fill[static_cast<std::size_t>(items[i][k])]++)] =
+          static_cast<int>(i * N + k);
+    }
+  }
+}
+
+}  // namespace
+
 Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
     : mesh_(std::move(mesh)), material_(material), bulk_(bulk) {
   mesh::check_mesh(mesh_);
@@ -182,35 +206,8 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
   if (!mesh_.inner_faces.empty() && !mesh_.clamped.empty() && inner_rim_.empty()) {
     throw mesh::MeshError("no inner face reaches the clamped rim: the cavity is not closed by it");
   }
-  // Each node's inner faces, in face order (face * 6 + local node).
-  face_incidence_start_.assign(nn + 1, 0);
-  for (const auto& f : mesh_.inner_faces) {
-    for (int a : f) ++face_incidence_start_[static_cast<std::size_t>(a) + 1];
-  }
-  for (std::size_t a = 0; a < nn; ++a) face_incidence_start_[a + 1] += face_incidence_start_[a];
-  face_incidence_.resize(static_cast<std::size_t>(face_incidence_start_[nn]));
-  {
-    std::vector<int> fill(face_incidence_start_.begin(), face_incidence_start_.end() - 1);
-    for (std::size_t f = 0; f < mesh_.inner_faces.size(); ++f) {
-      for (int k = 0; k < kTriNodes; ++k) {
-        face_incidence_[static_cast<std::size_t>(fill[mesh_.inner_faces[f][k]]++)] =
-            static_cast<int>(f) * kTriNodes + k;
-      }
-    }
-  }
-  incidence_start_.assign(nn + 1, 0);
-  for (const auto& tet : mesh_.tets) {
-    for (int a : tet) ++incidence_start_[static_cast<std::size_t>(a) + 1];
-  }
-  for (std::size_t a = 0; a < nn; ++a) incidence_start_[a + 1] += incidence_start_[a];
-  incidence_.resize(static_cast<std::size_t>(incidence_start_[nn]));
-  std::vector<int> fill(incidence_start_.begin(), incidence_start_.end() - 1);
-  for (std::size_t e = 0; e < mesh_.tets.size(); ++e) {
-    for (int k = 0; k < kTetNodes; ++k) {
-      incidence_[static_cast<std::size_t>(fill[mesh_.tets[e][k]]++)] =
-          static_cast<int>(e) * kTetNodes + k;
-    }
-  }
+  build_incidence(mesh_.inner_faces, nn, face_incidence_start_, face_incidence_);
+  build_incidence(mesh_.tets, nn, incidence_start_, incidence_);
 }
 
 double Body::quadrature_volume() const {
