@@ -437,11 +437,12 @@ FaceRule face_rule() {
   return r;
 }
 
-// At each quadrature point q of each face f: the area vector w dx/dr x dx/ds into
-// n[3 (f * points + q) ..] and, unless p is null, the position into p likewise. In parallel over
-// the faces; each value is the same at any thread count.
+// Calls visit(k, n, p) at each quadrature point q of each face f, k = f * points + q, with the
+// area vector n = w dx/dr x dx/ds and the position p there. In parallel over the faces: visit
+// writes to slot k only.
+template <typename Visit>
 void face_points(const FaceRule& rule, const std::vector<std::array<int, 6>>& faces,
-                 const mesh::Points& x, double* n, double* p) {
+                 const mesh::Points& x, Visit&& visit) {
   const long nf = static_cast<long>(faces.size());
   const std::size_t nq = rule.size;
 #pragma omp parallel for schedule(static)
@@ -454,20 +455,18 @@ void face_points(const FaceRule& rule, const std::vector<std::array<int, 6>>& fa
       xa[a][2] = x.z[face[a]];
     }
     for (std::size_t q = 0; q < nq; ++q) {
-      double pq[3] = {}, dr[3] = {}, ds[3] = {};
+      double p[3] = {}, dr[3] = {}, ds[3] = {};
       for (int a = 0; a < kTriNodes; ++a) {
         for (int i = 0; i < 3; ++i) {
-          pq[i] += rule.N[q][a] * xa[a][i];
+          p[i] += rule.N[q][a] * xa[a][i];
           dr[i] += rule.G[q][a][0] * xa[a][i];
           ds[i] += rule.G[q][a][1] * xa[a][i];
         }
       }
       const double w = rule.weight[q];
-      const std::size_t at = 3 * (static_cast<std::size_t>(f) * nq + q);
-      n[at] = w * (dr[1] * ds[2] - dr[2] * ds[1]);
-      n[at + 1] = w * (dr[2] * ds[0] - dr[0] * ds[2]);
-      n[at + 2] = w * (dr[0] * ds[1] - dr[1] * ds[0]);
-      if (p != nullptr) std::copy(pq, pq + 3, p + at);
+      const double n[3] = {w * (dr[1] * ds[2] - dr[2] * ds[1]), w * (dr[2] * ds[0] - dr[0] * ds[2]),
+                           w * (dr[0] * ds[1] - dr[1] * ds[0])};
+      visit(static_cast<std::size_t>(f) * nq + q, n, p);
     }
   }
 }
@@ -486,8 +485,10 @@ void Body::add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f
   const auto rule = face_rule();
   const std::size_t nq = rule.size;
   scratch.face_normals.resize(3 * nq * mesh_.inner_faces.size());
-  const double* n = scratch.face_normals.data();
-  face_points(rule, mesh_.inner_faces, x, scratch.face_normals.data(), nullptr);
+  double* n = scratch.face_normals.data();
+  face_points(rule, mesh_.inner_faces, x, [n](std::size_t k, const double* nk, const double*) {
+    std::copy(nk, nk + 3, n + 3 * k);
+  });
   const long nn = static_cast<long>(num_nodes());
 #pragma omp parallel for schedule(static)
   for (long a = 0; a < nn; ++a) {
@@ -519,13 +520,12 @@ double Body::cavity_volume(const mesh::Points& x) const {
   }
   for (double& v : c) v /= static_cast<double>(inner_rim_.size());
   const auto rule = face_rule();
-  const std::size_t points = rule.size * mesh_.inner_faces.size();
-  std::vector<double> n(3 * points), p(3 * points);
-  face_points(rule, mesh_.inner_faces, x, n.data(), p.data());
+  std::vector<double> terms(rule.size * mesh_.inner_faces.size());  // (p - c) . n per point
+  face_points(rule, mesh_.inner_faces, x, [&](std::size_t k, const double* n, const double* p) {
+    terms[k] = (p[0] - c[0]) * n[0] + (p[1] - c[1]) * n[1] + (p[2] - c[2]) * n[2];
+  });
   double volume = 0.0;  // point by point, in face order
-  for (std::size_t k = 0; k < 3 * points; k += 3) {
-    volume += (p[k] - c[0]) * n[k] + (p[k + 1] - c[1]) * n[k + 1] + (p[k + 2] - c[2]) * n[k + 2];
-  }
+  for (const double t : terms) volume += t;
   return volume / 3.0;
 }
 

@@ -46,8 +46,7 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
     for (long k = 0; k < nl; ++k) {
       const auto b = static_cast<std::size_t>(live[static_cast<std::size_t>(k)]);
       // Only blocks that hold a node layer z = 0, -dx, ..., -(layers - 1) dx.
-      const auto& bc = grid.block_coords(b);
-      const std::int64_t k0 = bc[2] * kBlock;
+      const std::int64_t k0 = grid.block_coords(b)[2] * kBlock;
       if (k0 > 0 || k0 + kBlock - 1 <= -layers_) continue;
       // The block's nodes on those layers: local z from lz0 to lz1.
       const int lz0 = static_cast<int>(std::max<std::int64_t>(0, 1 - layers_ - k0));
@@ -56,12 +55,12 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
       for (int l = 0; l < kBlockNodes; ++l) {  // in memory order
         const int lz = l % kBlock;
         if (lz < lz0 || lz > lz1) continue;
-        auto& g = grid.nodes[b * kBlockNodes + static_cast<std::size_t>(l)];
+        const std::size_t a = b * kBlockNodes + static_cast<std::size_t>(l);
+        auto& g = grid.nodes[a];
         if (g.m <= 0.0 || g.pz >= 0.0) continue;
         const double dpn = -g.pz;  // normal impulse given by the plate (upward)
         g.pz = 0.0;
-        loaded.push_back({bc[0] * kBlock + l / (kBlock * kBlock),
-                          bc[1] * kBlock + (l / kBlock) % kBlock, k0 + lz});
+        loaded.push_back(grid.coords(a));
         normal += dpn;
         const double pt = std::hypot(g.px, g.py);
         if (pt > 0.0 && mu_ > 0.0) {
