@@ -157,7 +157,9 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
     double element_weight = 0.0;  // the element's quadrature volume
     for (int q = 0; q < kQp; ++q) {
       const auto& p = rule[q];
-      const double detJ = reference_gradients(p.r, p.s, p.t, &grad_[(e * kQp + q) * kGradStride]);
+      double g[kGradStride];
+      const double detJ = reference_gradients(p.r, p.s, p.t, g);
+      for (int k = 0; k < kGradStride; ++k) grad_[(e * kGradStride + k) * kQp + q] = g[k];
       weight_[e * kQp + q] = p.weight * detJ;
       element_weight += p.weight * detJ;
     }
@@ -210,6 +212,22 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
   build_incidence(mesh_.tets, nn, incidence_start_, incidence_);
 }
 
+std::array<double, kGradStride> Body::point_gradients(std::size_t e, int q) const {
+  if (e >= mesh_.tets.size() || q < 0 || q >= kQp) {
+    throw std::out_of_range("point_gradients: no such element or quadrature point");
+  }
+  std::array<double, kGradStride> g{};
+  for (int k = 0; k < kGradStride; ++k) g[k] = grad_[(e * kGradStride + k) * kQp + q];
+  return g;
+}
+
+double Body::point_weight(std::size_t e, int q) const {
+  if (e >= mesh_.tets.size() || q < 0 || q >= kQp) {
+    throw std::out_of_range("point_weight: no such element or quadrature point");
+  }
+  return weight_[e * kQp + static_cast<std::size_t>(q)];
+}
+
 double Body::quadrature_volume() const {
   double v = 0.0;
   for (double w : weight_) v += w;
@@ -251,7 +269,7 @@ namespace {
   }
 }
 
-// F = sum_a x_a (dN_a/dX)^T at one point.
+// F = sum_a x_a (dN_a/dX)^T at one point, g the point's [node][3] gradients.
 [[gnu::always_inline]] inline void deformation_gradient(const double (*xe)[3], const double* g,
                                                         double F[9]) {
   std::fill(F, F + 9, 0.0);
@@ -264,8 +282,31 @@ namespace {
   }
 }
 
-// out_a -= w P dN_a/dX.
-[[gnu::always_inline]] inline void add_nodal_forces(const double P[9], const double* g, double w,
+// The same at the four quadrature points at once, G the element's [node][3][point] gradients:
+// F[k][q] is entry k at point q, summed over the nodes in the order of the one-point loop, so
+// each point's F has the same bits; the four points side by side let the compiler use vectors.
+[[gnu::always_inline]] inline void deformation_gradients(const double (*xe)[3], const double* G,
+                                                         double F[9][kQp]) {
+  for (int k = 0; k < 9; ++k) std::fill(F[k], F[k] + kQp, 0.0);
+  for (int a = 0; a < kTetNodes; ++a) {
+    for (int i = 0; i < 3; ++i) {
+      const double xi = xe[a][i];
+      for (int j = 0; j < 3; ++j) {
+        const double* g = G + (3 * a + j) * kQp;
+#pragma omp simd
+        for (int q = 0; q < kQp; ++q) F[3 * i + j][q] += xi * g[q];
+      }
+    }
+  }
+}
+
+// Point q's entries of F[9][kQp].
+[[gnu::always_inline]] inline void at_point(const double F[9][kQp], int q, double Fq[9]) {
+  for (int k = 0; k < 9; ++k) Fq[k] = F[k][q];
+}
+
+// out_a -= w P dN_a/dX at one point (g as for deformation_gradient).
+[[gnu::always_inline]] inline void add_point_forces(const double P[9], const double* g, double w,
                                                     double* out) {
   for (int a = 0; a < kTetNodes; ++a) {
     for (int i = 0; i < 3; ++i) {
@@ -275,12 +316,70 @@ namespace {
   }
 }
 
+// out_a -= w_q P_q dN_a/dX(q) for the four points, subtracted point after point: the bits of
+// add_point_forces called for q = 0, 1, 2, 3 (G and P as for deformation_gradients).
+[[gnu::always_inline]] inline void add_nodal_forces(const double P[9][kQp], const double* G,
+                                                    const double* w, double* out) {
+  for (int a = 0; a < kTetNodes; ++a) {
+    const double* g0 = G + 3 * a * kQp;
+    const double* g1 = g0 + kQp;
+    const double* g2 = g1 + kQp;
+    for (int i = 0; i < 3; ++i) {
+      double t[kQp];
+#pragma omp simd
+      for (int q = 0; q < kQp; ++q) {
+        t[q] = w[q] * (P[3 * i][q] * g0[q] + P[3 * i + 1][q] * g1[q] + P[3 * i + 2][q] * g2[q]);
+      }
+      double& o = out[3 * a + i];
+      for (int q = 0; q < kQp; ++q) o -= t[q];
+    }
+  }
+}
+
+// neo_hookean_stress at the four points at once (F and P as for deformation_gradients): the same
+// expressions point by point, so each point's P has neo_hookean_stress's bits; the logarithm
+// stays the scalar library call. False where some point's J is not positive.
+[[gnu::always_inline]] inline bool neo_hookean_stresses(const Material& m, const double F[9][kQp],
+                                                        double P[9][kQp]) {
+  double J[kQp], inv[kQp], c[kQp];
+  bool positive = true;
+#pragma omp simd
+  for (int q = 0; q < kQp; ++q) {
+    J[q] = F[0][q] * (F[4][q] * F[8][q] - F[5][q] * F[7][q]) -
+           F[1][q] * (F[3][q] * F[8][q] - F[5][q] * F[6][q]) +
+           F[2][q] * (F[3][q] * F[7][q] - F[4][q] * F[6][q]);
+  }
+  for (int q = 0; q < kQp; ++q) positive = positive && J[q] > 0.0;
+  if (!positive) return false;
+  for (int q = 0; q < kQp; ++q) c[q] = m.lambda * std::log(J[q]);
+  double T[9][kQp];  // F^-T
+#pragma omp simd
+  for (int q = 0; q < kQp; ++q) {
+    inv[q] = 1.0 / J[q];
+    T[0][q] = (F[4][q] * F[8][q] - F[5][q] * F[7][q]) * inv[q];
+    T[1][q] = (F[5][q] * F[6][q] - F[3][q] * F[8][q]) * inv[q];
+    T[2][q] = (F[3][q] * F[7][q] - F[4][q] * F[6][q]) * inv[q];
+    T[3][q] = (F[2][q] * F[7][q] - F[1][q] * F[8][q]) * inv[q];
+    T[4][q] = (F[0][q] * F[8][q] - F[2][q] * F[6][q]) * inv[q];
+    T[5][q] = (F[1][q] * F[6][q] - F[0][q] * F[7][q]) * inv[q];
+    T[6][q] = (F[1][q] * F[5][q] - F[2][q] * F[4][q]) * inv[q];
+    T[7][q] = (F[2][q] * F[3][q] - F[0][q] * F[5][q]) * inv[q];
+    T[8][q] = (F[0][q] * F[4][q] - F[1][q] * F[3][q]) * inv[q];
+  }
+  for (int k = 0; k < 9; ++k) {
+#pragma omp simd
+    for (int q = 0; q < kQp; ++q) P[k][q] = m.mu * (F[k][q] - T[k][q]) + c[q] * T[k][q];
+  }
+  return true;
+}
+
 }  // namespace
 
 template <bool kEnergy>
 bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
+  const auto es = static_cast<std::size_t>(e);
   double xe[kTetNodes][3];
-  gather(mesh_.tets[static_cast<std::size_t>(e)], x, xe);
+  gather(mesh_.tets[es], x, xe);
   if constexpr (kEnergy) {
     *out = 0.0;
   } else {
@@ -289,36 +388,38 @@ bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
   // With the bulk at the centroid, the four points carry the rest of the energy (lambda = 0).
   Material at_points = material_;
   if (bulk_ == BulkRule::centroid) at_points.lambda = 0.0;
-  for (int q = 0; q < kQp; ++q) {
-    const double* g = &grad_[(static_cast<std::size_t>(e) * kQp + q) * kGradStride];
-    const double w = weight_[static_cast<std::size_t>(e) * kQp + q];
-    double F[9];
-    deformation_gradient(xe, g, F);
-    if constexpr (kEnergy) {
-      const double psi = neo_hookean_energy(at_points, F);
+  const double* G = &grad_[es * kQp * kGradStride];
+  const double* w = &weight_[es * kQp];
+  double F[9][kQp];
+  deformation_gradients(xe, G, F);
+  if constexpr (kEnergy) {
+    for (int q = 0; q < kQp; ++q) {
+      double Fq[9];
+      at_point(F, q, Fq);
+      const double psi = neo_hookean_energy(at_points, Fq);
       if (!std::isfinite(psi)) return false;
-      *out += w * psi;
-    } else {
-      double P[9];
-      if (!neo_hookean_stress(at_points, F, P)) return false;
-      add_nodal_forces(P, g, w, out);
+      *out += w[q] * psi;
     }
+  } else {
+    double P[9][kQp];
+    if (!neo_hookean_stresses(at_points, F, P)) return false;
+    add_nodal_forces(P, G, w, out);
   }
   if (bulk_ == BulkRule::centroid) {
-    const double* g = &centroid_grad_[static_cast<std::size_t>(e) * kGradStride];
-    const double w = centroid_weight_[static_cast<std::size_t>(e)];
-    double F[9];
-    deformation_gradient(xe, g, F);
-    const double J = det3(F);
+    const double* g = &centroid_grad_[es * kGradStride];
+    const double wc = centroid_weight_[es];
+    double Fc[9];
+    deformation_gradient(xe, g, Fc);
+    const double J = det3(Fc);
     if (!(J > 0.0)) return false;
     const double lnJ = std::log(J);
     if constexpr (kEnergy) {
-      *out += w * 0.5 * material_.lambda * lnJ * lnJ;
+      *out += wc * 0.5 * material_.lambda * lnJ * lnJ;
     } else {
       double P[9];  // lambda ln J F^-T
-      inverse_transpose(F, J, P);
+      inverse_transpose(Fc, J, P);
       for (double& v : P) v *= material_.lambda * lnJ;
-      add_nodal_forces(P, g, w, out);
+      add_point_forces(P, g, wc, out);
     }
   }
   return true;
@@ -400,12 +501,13 @@ std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
     double xe[kTetNodes][3];
     gather(mesh_.tets[e], x, xe);
     double W = 0.0, V = 0.0;
+    double F[9][kQp];
+    deformation_gradients(xe, &grad_[e * kQp * kGradStride], F);
     for (int q = 0; q < kQp; ++q) {
-      const double* g = &grad_[(e * kQp + q) * kGradStride];
       const double w = weight_[e * kQp + q];
-      double F[9];
-      deformation_gradient(xe, g, F);
-      const double psi = neo_hookean_energy(material_, F);
+      double Fq[9];
+      at_point(F, q, Fq);
+      const double psi = neo_hookean_energy(material_, Fq);
       W += w * (std::isfinite(psi) ? psi : 0.0);
       V += w;
     }
@@ -493,16 +595,24 @@ void Body::add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f
 #pragma omp parallel for schedule(static)
   for (long a = 0; a < nn; ++a) {
     const auto as = static_cast<std::size_t>(a);
-    for (int k = face_incidence_start_[as]; k < face_incidence_start_[as + 1]; ++k) {
+    const int k0 = face_incidence_start_[as], k1 = face_incidence_start_[as + 1];
+    if (k0 == k1) continue;
+    // The node's force held in registers while its shares are subtracted, in the same order.
+    double fa[3] = {f.x[as], f.y[as], f.z[as]};
+    for (int k = k0; k < k1; ++k) {
       const auto slot = static_cast<std::size_t>(face_incidence_[static_cast<std::size_t>(k)]);
       const std::size_t face = slot / kTriNodes, local = slot % kTriNodes;
       for (std::size_t q = 0; q < nq; ++q) {
         const double* nv = n + 3 * (face * nq + q);
-        f.x[as] -= dp * rule.N[q][local] * nv[0];
-        f.y[as] -= dp * rule.N[q][local] * nv[1];
-        f.z[as] -= dp * rule.N[q][local] * nv[2];
+        const double s = dp * rule.N[q][local];
+        fa[0] -= s * nv[0];
+        fa[1] -= s * nv[1];
+        fa[2] -= s * nv[2];
       }
     }
+    f.x[as] = fa[0];
+    f.y[as] = fa[1];
+    f.z[as] = fa[2];
   }
 }
 

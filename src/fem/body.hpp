@@ -6,6 +6,8 @@
 // forces, energies and volumes. Node data are structure-of-arrays (mesh::Points).
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -63,6 +65,11 @@ class Body {
   // dt = factor * min_node_spacing / p_wave_speed (the elastic time step factor).
   [[nodiscard]] double stable_time_step(double factor) const;
 
+  // Element e's reference shape gradients dN_a/dX at its quadrature point q (of 4), as
+  // [node][3], and that point's weight (rule weight * det(dX/dxi)).
+  [[nodiscard]] std::array<double, 30> point_gradients(std::size_t e, int q) const;
+  [[nodiscard]] double point_weight(std::size_t e, int q) const;
+
   // Working memory of internal_forces and add_pressure_forces: one per caller that calls them
   // every step.
   struct ForceScratch {
@@ -101,7 +108,9 @@ class Body {
   mesh::Mesh mesh_;
   Material material_;
   BulkRule bulk_ = BulkRule::full;
-  std::vector<double> grad_;    // [element][qp][node][3] reference shape gradients dN/dX
+  // Reference shape gradients dN/dX, [element][node][3][qp]: the four points' values of one
+  // entry side by side, so that the force loop works on the four points at once.
+  std::vector<double> grad_;
   std::vector<double> weight_;  // [element][qp] quadrature weight * det(dX/dxi)
   // BulkRule::centroid only: dN/dX at each element's centroid, and the element's quadrature
   // volume (the sum of its four weights) as that point's weight.

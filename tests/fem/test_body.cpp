@@ -429,6 +429,56 @@ TEST(Body, GatheredPressureLoadAndVolumeEqualTheFaceByFaceSums) {
   EXPECT_EQ(body.cavity_volume(x), volume / 3.0);
 }
 
+// The force loop works on an element's four quadrature points side by side (vectors); each
+// element's nodal forces and energy must still be the bits of a plain loop over the points, one
+// after the other: F summed node by node, neo_hookean_stress and neo_hookean_energy at the point,
+// the point's forces w P dN/dX subtracted point after point, the energies added likewise.
+TEST(Body, FourPointsAtOnceGiveTheBitsOfAPointByPointLoop) {
+  const auto& body = coarse_cap();  // the bulk at the four points (the default)
+  auto x = body.mesh().nodes;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 2e-5);
+  for (std::size_t a = 0; a < x.size(); ++a) x.z[a] += 2.0 * x.x[a] * x.x[a];  // a bend
+  for (auto* v : {&x.x, &x.y, &x.z}) {
+    for (double& c : *v) c += noise(rng);
+  }
+  mesh::Points f;
+  Body::ForceScratch scratch;
+  body.internal_forces(x, f, scratch);
+  int differ = 0;
+  double energy = 0.0;
+  for (std::size_t e = 0; e < body.num_elements(); ++e) {
+    const auto& tet = body.mesh().tets[e];
+    double slot[30] = {}, element_energy = 0.0;
+    for (int q = 0; q < 4; ++q) {
+      const auto g = body.point_gradients(e, q);
+      const double w = body.point_weight(e, q);
+      double F[9] = {};
+      for (int a = 0; a < 10; ++a) {
+        const double xa[3] = {x.x[tet[a]], x.y[tet[a]], x.z[tet[a]]};
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) F[3 * i + j] += xa[i] * g[3 * a + j];
+        }
+      }
+      double P[9];
+      ASSERT_TRUE(neo_hookean_stress(body.material(), F, P));
+      for (int a = 0; a < 10; ++a) {
+        for (int i = 0; i < 3; ++i) {
+          slot[3 * a + i] -=
+              w * (P[3 * i] * g[3 * a] + P[3 * i + 1] * g[3 * a + 1] + P[3 * i + 2] * g[3 * a + 2]);
+        }
+      }
+      element_energy += w * neo_hookean_energy(body.material(), F);
+    }
+    for (int k = 0; k < 30; ++k) differ += scratch.element_forces[30 * e + k] != slot[k] ? 1 : 0;
+    energy += element_energy;
+  }
+  EXPECT_EQ(differ, 0) << "element force values that differ from the point-by-point loop";
+  EXPECT_EQ(body.strain_energy(x), energy);
+  EXPECT_THROW((void)body.point_gradients(body.num_elements(), 0), std::out_of_range);
+  EXPECT_THROW((void)body.point_weight(0, 4), std::out_of_range);
+}
+
 // A snapshot that ParaView can use: the node sets as 0/1 point arrays, the time as field data,
 // and the displacement measured from the reference moved with the container, so that a popper
 // lifted as a whole has none.
