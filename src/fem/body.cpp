@@ -217,7 +217,8 @@ std::array<double, kGradStride> Body::point_gradients(std::size_t e, int q) cons
     throw std::out_of_range("point_gradients: no such element or quadrature point");
   }
   std::array<double, kGradStride> g{};
-  for (int k = 0; k < kGradStride; ++k) g[k] = grad_[(e * kGradStride + k) * kQp + q];
+  const auto qs = static_cast<std::size_t>(q);
+  for (std::size_t k = 0; k < kGradStride; ++k) g[k] = grad_[(e * kGradStride + k) * kQp + qs];
   return g;
 }
 
@@ -336,9 +337,10 @@ namespace {
   }
 }
 
-// neo_hookean_stress at the four points at once (F and P as for deformation_gradients): the same
-// expressions point by point, so each point's P has neo_hookean_stress's bits; the logarithm
-// stays the scalar library call. False where some point's J is not positive.
+// neo_hookean_stress (det3, inverse_transpose) at the four points at once (F and P as for
+// deformation_gradients): the same expressions point by point, so each point's P has
+// neo_hookean_stress's bits; the logarithm stays the scalar library call. False where some point's
+// J is not positive.
 [[gnu::always_inline]] inline bool neo_hookean_stresses(const Material& m, const double F[9][kQp],
                                                         double P[9][kQp]) {
   double J[kQp], inv[kQp], c[kQp];
@@ -351,6 +353,7 @@ namespace {
   }
   for (int q = 0; q < kQp; ++q) positive = positive && J[q] > 0.0;
   if (!positive) return false;
+  // Scalar on purpose: a vector logarithm (libmvec, -ffast-math) would round differently.
   for (int q = 0; q < kQp; ++q) c[q] = m.lambda * std::log(J[q]);
   double T[9][kQp];  // F^-T
 #pragma omp simd

@@ -67,7 +67,7 @@ class Body {
 
   // Element e's reference shape gradients dN_a/dX at its quadrature point q (of 4), as
   // [node][3], and that point's weight (rule weight * det(dX/dxi)).
-  [[nodiscard]] std::array<double, 30> point_gradients(std::size_t e, int q) const;
+  [[nodiscard]] std::array<double, 30> point_gradients(std::size_t e, int q) const;  // 3 x 10
   [[nodiscard]] double point_weight(std::size_t e, int q) const;
 
   // Working memory of internal_forces and add_pressure_forces: one per caller that calls them

@@ -476,7 +476,54 @@ TEST(Body, FourPointsAtOnceGiveTheBitsOfAPointByPointLoop) {
   EXPECT_EQ(differ, 0) << "element force values that differ from the point-by-point loop";
   EXPECT_EQ(body.strain_energy(x), energy);
   EXPECT_THROW((void)body.point_gradients(body.num_elements(), 0), std::out_of_range);
+  EXPECT_THROW((void)body.point_gradients(0, -1), std::out_of_range);
   EXPECT_THROW((void)body.point_weight(0, 4), std::out_of_range);
+}
+
+// The gradients the force loop reads for point q are dN/dX at the rule's point q, worked out
+// here from the shape functions and the element's map (so a mix-up of the stored points shows).
+TEST(Body, PointGradientsAreTheShapeGradientsAtTheRulesPoints) {
+  const auto& body = coarse_cap();
+  const auto& X = body.mesh().nodes;
+  const auto rule = mesh::tet_rule_degree2();
+  ASSERT_EQ(rule.size(), 4U);
+  double worst = 0.0;
+  for (std::size_t e = 0; e < body.num_elements(); e += 7) {
+    const auto& tet = body.mesh().tets[e];
+    for (int q = 0; q < 4; ++q) {
+      const auto& p = rule[static_cast<std::size_t>(q)];
+      const auto G = mesh::tet10_shape_gradients(p.r, p.s, p.t);
+      double J[3][3] = {};  // dX_i / dxi_j
+      for (int a = 0; a < 10; ++a) {
+        const double Xa[3] = {X.x[tet[a]], X.y[tet[a]], X.z[tet[a]]};
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) J[i][j] += Xa[i] * G[a][j];
+        }
+      }
+      // dN/dX = J^-T dN/dxi: solve J^T g = G by Cramer's rule.
+      const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+      ASSERT_GT(det, 0.0);
+      EXPECT_NEAR(body.point_weight(e, q), p.weight * det, 1e-12 * std::abs(p.weight * det));
+      const auto g = body.point_gradients(e, q);
+      for (int a = 0; a < 10; ++a) {
+        const double b[3] = {G[a][0], G[a][1], G[a][2]};
+        for (int k = 0; k < 3; ++k) {
+          double M[3][3];  // J^T with column k replaced by b
+          for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) M[i][j] = j == k ? b[i] : J[j][i];
+          }
+          const double dk = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+                            M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+                            M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+          const double expected = dk / det;
+          worst = std::max(worst, std::abs(g[3 * a + k] - expected) / (1.0 + std::abs(expected)));
+        }
+      }
+    }
+  }
+  EXPECT_LT(worst, 1e-9);
 }
 
 // A snapshot that ParaView can use: the node sets as 0/1 point arrays, the time as field data,
