@@ -27,23 +27,37 @@ namespace {
 constexpr int kQp = 4;  // points of the degree-2 rule
 constexpr int kGradStride = kTetNodes * 3;
 
+// The determinant and F^-T of a row-major 3x3 whose entry k is A(k): one set of expressions for
+// a plain matrix (det3, inverse_transpose) and for one point of the force loop's four (the same
+// bits either way).
+template <typename At>
+[[gnu::always_inline]] inline double det3_of(At A) {
+  return A(0) * (A(4) * A(8) - A(5) * A(7)) - A(1) * (A(3) * A(8) - A(5) * A(6)) +
+         A(2) * (A(3) * A(7) - A(4) * A(6));
+}
+
+// put(k, entry k of F^-T) = put(k, cofactor k of F * inv), inv = 1 / det F.
+template <typename At, typename Put>
+[[gnu::always_inline]] inline void inverse_transpose_of(At F, double inv, Put put) {
+  put(0, (F(4) * F(8) - F(5) * F(7)) * inv);
+  put(1, (F(5) * F(6) - F(3) * F(8)) * inv);
+  put(2, (F(3) * F(7) - F(4) * F(6)) * inv);
+  put(3, (F(2) * F(7) - F(1) * F(8)) * inv);
+  put(4, (F(0) * F(8) - F(2) * F(6)) * inv);
+  put(5, (F(1) * F(6) - F(0) * F(7)) * inv);
+  put(6, (F(1) * F(5) - F(2) * F(4)) * inv);
+  put(7, (F(2) * F(3) - F(0) * F(5)) * inv);
+  put(8, (F(0) * F(4) - F(1) * F(3)) * inv);
+}
+
 double det3(const double A[9]) {
-  return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
-         A[2] * (A[3] * A[7] - A[4] * A[6]);
+  return det3_of([A](int k) { return A[k]; });
 }
 
 // F^-T of a row-major 3x3 with determinant J: cofactor matrix / J.
 void inverse_transpose(const double F[9], double J, double out[9]) {
-  const double inv = 1.0 / J;
-  out[0] = (F[4] * F[8] - F[5] * F[7]) * inv;
-  out[1] = (F[5] * F[6] - F[3] * F[8]) * inv;
-  out[2] = (F[3] * F[7] - F[4] * F[6]) * inv;
-  out[3] = (F[2] * F[7] - F[1] * F[8]) * inv;
-  out[4] = (F[0] * F[8] - F[2] * F[6]) * inv;
-  out[5] = (F[1] * F[6] - F[0] * F[7]) * inv;
-  out[6] = (F[1] * F[5] - F[2] * F[4]) * inv;
-  out[7] = (F[2] * F[3] - F[0] * F[5]) * inv;
-  out[8] = (F[0] * F[4] - F[1] * F[3]) * inv;
+  inverse_transpose_of([F](int k) { return F[k]; }, 1.0 / J,
+                       [out](int k, double v) { out[k] = v; });
 }
 
 }  // namespace
@@ -212,10 +226,15 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
   build_incidence(mesh_.tets, nn, incidence_start_, incidence_);
 }
 
-std::array<double, kGradStride> Body::point_gradients(std::size_t e, int q) const {
+void Body::check_point(std::size_t e, int q, const char* what) const {
   if (e >= mesh_.tets.size() || q < 0 || q >= kQp) {
-    throw std::out_of_range("point_gradients: no such element or quadrature point");
+    throw std::out_of_range(
+        fmt::format("{}: no element {} or quadrature point {} (of {})", what, e, q, kQp));
   }
+}
+
+std::array<double, kGradStride> Body::point_gradients(std::size_t e, int q) const {
+  check_point(e, q, "point_gradients");
   std::array<double, kGradStride> g{};
   const auto qs = static_cast<std::size_t>(q);
   for (std::size_t k = 0; k < kGradStride; ++k) g[k] = grad_[(e * kGradStride + k) * kQp + qs];
@@ -223,9 +242,7 @@ std::array<double, kGradStride> Body::point_gradients(std::size_t e, int q) cons
 }
 
 double Body::point_weight(std::size_t e, int q) const {
-  if (e >= mesh_.tets.size() || q < 0 || q >= kQp) {
-    throw std::out_of_range("point_weight: no such element or quadrature point");
-  }
+  check_point(e, q, "point_weight");
   return weight_[e * kQp + static_cast<std::size_t>(q)];
 }
 
@@ -337,20 +354,16 @@ namespace {
   }
 }
 
-// neo_hookean_stress (det3, inverse_transpose) at the four points at once (F and P as for
-// deformation_gradients): the same expressions point by point, so each point's P has
+// neo_hookean_stress at the four points at once (F and P as for deformation_gradients): the same
+// expressions point by point (det3_of, inverse_transpose_of), so each point's P has
 // neo_hookean_stress's bits; the logarithm stays the scalar library call. False where some point's
 // J is not positive.
 [[gnu::always_inline]] inline bool neo_hookean_stresses(const Material& m, const double F[9][kQp],
                                                         double P[9][kQp]) {
-  double J[kQp], inv[kQp], c[kQp];
+  double J[kQp], c[kQp];
   bool positive = true;
 #pragma omp simd
-  for (int q = 0; q < kQp; ++q) {
-    J[q] = F[0][q] * (F[4][q] * F[8][q] - F[5][q] * F[7][q]) -
-           F[1][q] * (F[3][q] * F[8][q] - F[5][q] * F[6][q]) +
-           F[2][q] * (F[3][q] * F[7][q] - F[4][q] * F[6][q]);
-  }
+  for (int q = 0; q < kQp; ++q) J[q] = det3_of([&F, q](int k) { return F[k][q]; });
   for (int q = 0; q < kQp; ++q) positive = positive && J[q] > 0.0;
   if (!positive) return false;
   // Scalar on purpose: a vector logarithm (libmvec, -ffast-math) would round differently.
@@ -358,16 +371,8 @@ namespace {
   double T[9][kQp];  // F^-T
 #pragma omp simd
   for (int q = 0; q < kQp; ++q) {
-    inv[q] = 1.0 / J[q];
-    T[0][q] = (F[4][q] * F[8][q] - F[5][q] * F[7][q]) * inv[q];
-    T[1][q] = (F[5][q] * F[6][q] - F[3][q] * F[8][q]) * inv[q];
-    T[2][q] = (F[3][q] * F[7][q] - F[4][q] * F[6][q]) * inv[q];
-    T[3][q] = (F[2][q] * F[7][q] - F[1][q] * F[8][q]) * inv[q];
-    T[4][q] = (F[0][q] * F[8][q] - F[2][q] * F[6][q]) * inv[q];
-    T[5][q] = (F[1][q] * F[6][q] - F[0][q] * F[7][q]) * inv[q];
-    T[6][q] = (F[1][q] * F[5][q] - F[2][q] * F[4][q]) * inv[q];
-    T[7][q] = (F[2][q] * F[3][q] - F[0][q] * F[5][q]) * inv[q];
-    T[8][q] = (F[0][q] * F[4][q] - F[1][q] * F[3][q]) * inv[q];
+    inverse_transpose_of([&F, q](int k) { return F[k][q]; }, 1.0 / J[q],
+                         [&T, q](int k, double v) { T[k][q] = v; });
   }
   for (int k = 0; k < 9; ++k) {
 #pragma omp simd

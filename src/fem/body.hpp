@@ -104,6 +104,8 @@ class Body {
   // out[0..30). False where a quadrature point is inverted.
   template <bool kEnergy>
   bool element_pass(int e, const mesh::Points& x, double* out) const;
+  // Throws std::out_of_range naming `what` unless element e and its point q exist.
+  void check_point(std::size_t e, int q, const char* what) const;
 
   mesh::Mesh mesh_;
   Material material_;
