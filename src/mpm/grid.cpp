@@ -1,11 +1,14 @@
 #include "mpm/grid.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
+#include <type_traits>
 
 #include "core/morton.hpp"
 
@@ -310,16 +313,30 @@ void SparseGrid::group_particles() {
   for (std::size_t p = 0; p < np; ++p) order_[fill_[home_[p]]++] = static_cast<int>(p);
 }
 
-// Zeroes the live blocks of the last step; every other block is zero already.
+// Zeroes the live blocks of the last step; every other block is zero already. The live blocks
+// lie mostly in runs along memory: each run is cleared with one memset, which the C library does
+// with the widest stores the processor has (a Node of zero bytes is Node{}: +0.0 four times).
 void SparseGrid::zero_live_blocks() {
+  static_assert(std::is_trivially_copyable_v<Node>);
   const long n = static_cast<long>(live_.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < n; ++k) {
-    const auto b = static_cast<std::size_t>(live_[static_cast<std::size_t>(k)]);
-    std::fill_n(nodes.begin() + static_cast<std::ptrdiff_t>(b * kBlockNodes), kBlockNodes, Node{});
-    std::fill_n(tags.begin() + static_cast<std::ptrdiff_t>(b * kBlockNodes), kBlockNodes,
-                std::uint8_t{0});
-    block_tags[b] = 0;
+#pragma omp parallel
+  {
+    // This thread's share of the live list, as a static schedule would give it.
+    const long threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const long first = n * t / threads, end = n * (t + 1) / threads;
+    for (long k = first; k < end;) {
+      const auto b = static_cast<std::size_t>(live_[static_cast<std::size_t>(k)]);
+      std::size_t run = 1;
+      while (k + static_cast<long>(run) < end &&
+             live_[static_cast<std::size_t>(k) + run] == static_cast<int>(b + run)) {
+        ++run;
+      }
+      std::memset(static_cast<void*>(nodes.data() + b * kBlockNodes), 0,
+                  run * kBlockNodes * sizeof(Node));
+      std::memset(tags.data() + b * kBlockNodes, 0, run * kBlockNodes);
+      std::memset(block_tags.data() + b, 0, run);
+      k += static_cast<long>(run);
+    }
   }
 }
 

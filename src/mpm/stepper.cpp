@@ -5,11 +5,19 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstddef>
+#include <cstring>
 #include <limits>
 
 namespace snapjump::mpm {
 
 namespace {
+
+// Two doubles side by side (a compiler vector: SSE2 on x86-64, NEON on arm64); each lane's
+// arithmetic is the scalar's.
+using Pair = double __attribute__((vector_size(2 * sizeof(double))));
+static_assert(sizeof(SparseGrid::Node) == 2 * sizeof(Pair) &&
+              offsetof(SparseGrid::Node, py) == sizeof(Pair));
 
 // The 27 grid nodes of a particle's quadratic B-spline stencil, axis by axis: the weight of each
 // of the three nodes along an axis, its offset from the particle, and where it lies in the grid
@@ -159,22 +167,28 @@ void Stepper::scatter(std::size_t n) {
   const double m = p_.mass[n];
   const double* C = &p_.C[9 * n];
   const double v[3] = {p_.v.x[n], p_.v.y[n], p_.v.z[n]};
-  // The APIC velocity v + C (x_node - x_p), built up axis by axis.
+  // The APIC velocity v + C (x_node - x_p), built up axis by axis. A node's (m, px, py, pz) is
+  // updated as two pairs, (1, u_x) and (u_y, u_z) times the weighted mass: each lane is the
+  // scalar expression's product and sum (1 + 0 dz is 1 exactly), so the bits are the same.
+  const Pair cz_lo = {0.0, C[2]}, cz_hi = {C[5], C[8]};
   for (int a = 0; a < 3; ++a) {
     const double dxa = st.d[0][a];
     const double ua[3] = {v[0] + C[0] * dxa, v[1] + C[3] * dxa, v[2] + C[6] * dxa};
     for (int b = 0; b < 3; ++b) {
       const double dyb = st.d[1][b];
-      const double uab[3] = {ua[0] + C[1] * dyb, ua[1] + C[4] * dyb, ua[2] + C[7] * dyb};
+      const Pair u_lo = {1.0, ua[0] + C[1] * dyb}, u_hi = {ua[1] + C[4] * dyb, ua[2] + C[7] * dyb};
       const double mab = m * st.w[0][a] * st.w[1][b];
       for (int c = 0; c < 3; ++c) {
         const double dzc = st.d[2][c];
         const double mw = mab * st.w[2][c];
         auto& g = grid_.nodes[st.node(a, b, c)];
-        g.m += mw;
-        g.px += mw * (uab[0] + C[2] * dzc);
-        g.py += mw * (uab[1] + C[5] * dzc);
-        g.pz += mw * (uab[2] + C[8] * dzc);
+        Pair lo, hi;
+        std::memcpy(&lo, &g.m, sizeof lo);
+        std::memcpy(&hi, &g.py, sizeof hi);
+        lo += mw * (u_lo + cz_lo * dzc);
+        hi += mw * (u_hi + cz_hi * dzc);
+        std::memcpy(&g.m, &lo, sizeof lo);
+        std::memcpy(&g.py, &hi, sizeof hi);
       }
     }
   }
@@ -209,37 +223,46 @@ void Stepper::grid_to_particle() {
     const auto i = static_cast<std::size_t>(order[k]);
     const Stencil st(grid_, p_.x, i, dx);
     // v = sum w v_node; B = sum w v_node d^T, d = x_node - x_p, summed axis by axis: column z
-    // per node, column y per (a, b) row, column x per a plane.
-    double v[3] = {0, 0, 0};
-    double B[9] = {};
+    // per node, column y per (a, b) row, column x per a plane. The x and y rows go as a pair
+    // (each lane the scalar sum, in the same order), the z row alone.
+    Pair v_xy = {0, 0}, bx_xy = {0, 0}, by_xy = {0, 0}, bz_xy = {0, 0};
+    double v_z = 0, bx_z = 0, by_z = 0, bz_z = 0;
     for (int a = 0; a < 3; ++a) {
-      double sa[3] = {0, 0, 0};
+      Pair sa_xy = {0, 0};
+      double sa_z = 0;
       for (int b = 0; b < 3; ++b) {
-        double sab[3] = {0, 0, 0};
+        Pair sab_xy = {0, 0};
+        double sab_z = 0;
         const double wab = st.w[0][a] * st.w[1][b];
         for (int c = 0; c < 3; ++c) {
           const auto& g = grid_.nodes[st.node(a, b, c)];
           // A node of zero weight that no other particle reaches has no mass (and no momentum).
           const double s = g.m > 0.0 ? wab * st.w[2][c] / g.m : 0.0;
-          const double q[3] = {s * g.px, s * g.py, s * g.pz};
+          Pair p_xy;
+          std::memcpy(&p_xy, &g.px, sizeof p_xy);
+          const Pair q_xy = s * p_xy;
+          const double q_z = s * g.pz;
           const double dzc = st.d[2][c];
-          for (int r = 0; r < 3; ++r) {
-            sab[r] += q[r];
-            B[3 * r + 2] += q[r] * dzc;
-          }
+          sab_xy += q_xy;
+          sab_z += q_z;
+          bz_xy += q_xy * dzc;
+          bz_z += q_z * dzc;
         }
         const double dyb = st.d[1][b];
-        for (int r = 0; r < 3; ++r) {
-          sa[r] += sab[r];
-          B[3 * r + 1] += sab[r] * dyb;
-        }
+        sa_xy += sab_xy;
+        sa_z += sab_z;
+        by_xy += sab_xy * dyb;
+        by_z += sab_z * dyb;
       }
       const double dxa = st.d[0][a];
-      for (int r = 0; r < 3; ++r) {
-        v[r] += sa[r];
-        B[3 * r] += sa[r] * dxa;
-      }
+      v_xy += sa_xy;
+      v_z += sa_z;
+      bx_xy += sa_xy * dxa;
+      bx_z += sa_z * dxa;
     }
+    const double v[3] = {v_xy[0], v_xy[1], v_z};
+    const double B[9] = {bx_xy[0], by_xy[0], bz_xy[0], bx_xy[1], by_xy[1],
+                         bz_xy[1], bx_z,     by_z,     bz_z};
     p_.v.x[i] = v[0];
     p_.v.y[i] = v[1];
     p_.v.z[i] = v[2];
