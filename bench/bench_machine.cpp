@@ -1,0 +1,102 @@
+// What this machine gives two threads, apart from snapjump: the limits a step's stages meet.
+//   BM_Clear/<threads>       clear a buffer the size of the default popper's live grid nodes
+//                            (216 k nodes of 32 bytes: 6.9 MB) block by block with memset, each
+//                            thread its half: the bandwidth the grid's zeroing and transfers
+//                            share
+//   BM_Chains/<threads>      each thread the same chains of dependent multiply-adds (registers
+//                            only): whether the threads get a core each (a hyperthread pair or
+//                            a shared core would slow both)
+//   BM_Region/<threads>      an empty OpenMP parallel region: what starting the threads costs
+//   BM_Barrier/<threads>     one barrier inside a running region
+// Reports bytes per second (BM_Clear) or the time per item. A step's stages that move the grid
+// can scale no better with threads than BM_Clear does (docs/performance.md, "Session 15").
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <cstring>
+#include <vector>
+
+namespace {
+
+constexpr std::size_t kGridBytes = 215872 * 32;
+constexpr std::size_t kBlockBytes = 64 * 32;
+
+void BM_Clear(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  std::vector<unsigned char> buffer(kGridBytes, 1);
+  unsigned char value = 0;
+  for (auto _ : state) {
+#pragma omp parallel num_threads(threads)
+    {
+      const auto t = static_cast<std::size_t>(omp_get_thread_num());
+      const auto n = static_cast<std::size_t>(omp_get_num_threads());
+      const std::size_t first = kGridBytes * t / n, end = kGridBytes * (t + 1) / n;
+      // Block by block (64 nodes, 2 KB), as the grid's zeroing clears its runs of blocks: one
+      // memset of megabytes would take the C library's path for buffers beyond the cache.
+      for (std::size_t b = first; b < end; b += kBlockBytes) {
+        std::memset(buffer.data() + b, value, std::min(kBlockBytes, end - b));
+      }
+    }
+    value = static_cast<unsigned char>(value + 1);  // each pass writes new bytes
+    benchmark::DoNotOptimize(buffer.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations()) *
+                          static_cast<std::int64_t>(kGridBytes));
+}
+BENCHMARK(BM_Clear)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+
+// Four chains of dependent multiply-adds, 10 million steps each, per thread.
+double chains() {
+  double a = 1.0, b = 1.000001, c = 0.999999, d = 1.0000003;
+  for (int i = 0; i < 10000000; ++i) {
+    a = a * 0.9999999 + 1e-9;
+    b = b * 0.9999998 + 1e-9;
+    c = c * 0.9999997 + 1e-9;
+    d = d * 0.9999996 + 1e-9;
+  }
+  return a + b + c + d;
+}
+
+void BM_Chains(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    double sum = 0.0;
+#pragma omp parallel num_threads(threads) reduction(+ : sum)
+    sum += chains();
+    benchmark::DoNotOptimize(sum);
+  }
+}
+BENCHMARK(BM_Chains)->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+void BM_Region(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  int sink = 0;
+  for (auto _ : state) {
+#pragma omp parallel num_threads(threads)
+    {
+      if (omp_get_thread_num() == threads) sink = 1;  // never: the region does nothing
+    }
+  }
+  benchmark::DoNotOptimize(sink);
+}
+BENCHMARK(BM_Region)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+
+void BM_Barrier(benchmark::State& state) {
+  const int threads = static_cast<int>(state.range(0));
+  constexpr int kBarriers = 10000;
+  for (auto _ : state) {
+#pragma omp parallel num_threads(threads)
+    for (int k = 0; k < kBarriers; ++k) {
+#pragma omp barrier
+    }
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * kBarriers);
+}
+BENCHMARK(BM_Barrier)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
