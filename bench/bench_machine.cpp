@@ -1,20 +1,23 @@
 // What this machine gives two threads, apart from snapjump: the limits a step's stages meet.
 //   BM_Clear/<threads>       clear a buffer the size of the default popper's live grid nodes
-//                            (216 k nodes of 32 bytes: 6.9 MB) block by block with memset, each
-//                            thread its half: the bandwidth the grid's zeroing and transfers
-//                            share
+//                            (216 k nodes of 32 bytes: 6.9 MB) with memsets of one block (2 KB)
+//                            each, each thread its half: the cache bandwidth two threads get
+//                            for the grid's bytes (the grid's zeroing clears runs of blocks,
+//                            tags too; the transfers read and write the same bytes)
 //   BM_Chains/<threads>      each thread the same chains of dependent multiply-adds (registers
 //                            only): whether the threads get a core each (a hyperthread pair or
 //                            a shared core would slow both)
 //   BM_Region/<threads>      an empty OpenMP parallel region: what starting the threads costs
 //   BM_Barrier/<threads>     one barrier inside a running region
-// Reports bytes per second (BM_Clear) or the time per item. A step's stages that move the grid
-// can scale no better with threads than BM_Clear does (docs/performance.md, "Session 15").
+// Reports the time per iteration, with bytes per second (BM_Clear) or barriers per second
+// (BM_Barrier, 10,000 barriers an iteration). docs/performance.md, "Session 15", compares these
+// with how the step's stages scale on the same machine.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -33,8 +36,8 @@ void BM_Clear(benchmark::State& state) {
       const auto t = static_cast<std::size_t>(omp_get_thread_num());
       const auto n = static_cast<std::size_t>(omp_get_num_threads());
       const std::size_t first = kGridBytes * t / n, end = kGridBytes * (t + 1) / n;
-      // Block by block (64 nodes, 2 KB), as the grid's zeroing clears its runs of blocks: one
-      // memset of megabytes would take the C library's path for buffers beyond the cache.
+      // Block by block (64 nodes, 2 KB): one memset of megabytes would take the C library's
+      // path for buffers beyond the cache, which the grid's runs of blocks do not reach.
       for (std::size_t b = first; b < end; b += kBlockBytes) {
         std::memset(buffer.data() + b, value, std::min(kBlockBytes, end - b));
       }

@@ -321,7 +321,7 @@ void SparseGrid::zero_live_blocks() {
   const long n = static_cast<long>(live_.size());
 #pragma omp parallel
   {
-    // This thread's share of the live list, as a static schedule would give it.
+    // An even share of the live list for each thread.
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     const long first = n * t / threads, end = n * (t + 1) / threads;
     for (long k = first; k < end;) {

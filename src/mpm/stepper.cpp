@@ -14,7 +14,9 @@ namespace snapjump::mpm {
 namespace {
 
 // Two doubles side by side (a compiler vector: SSE2 on x86-64, NEON on arm64); each lane's
-// arithmetic is the scalar's.
+// arithmetic is the scalar's. (On the baseline x86-64 build, which has no fused multiply-add to
+// contract into; a build for a processor with one may contract scalar and vector expressions
+// differently.)
 using Pair = double __attribute__((vector_size(2 * sizeof(double))));
 static_assert(sizeof(SparseGrid::Node) == 2 * sizeof(Pair) &&
               offsetof(SparseGrid::Node, py) == sizeof(Pair));
