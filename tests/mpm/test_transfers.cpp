@@ -187,20 +187,29 @@ TEST(Transfers, TheTransfersGiveTheScalarExpressionsBits) {
   for (std::size_t a = 0; a < g.num_nodes(); ++a) {
     if (g.nodes[a].m != 0.0) grid[g.coords(a)] = g.nodes[a];
   }
+  EXPECT_EQ(grid.size(), 27 * p.size());  // the stencils do not overlap
   const auto bits = [](double v) { return std::bit_cast<std::uint64_t>(v); };
   const double inv_dx = 1.0 / dx;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const double xi[3] = {p.x.x[i], p.x.y[i], p.x.z[i]};
-    double w[3][3], d[3][3];
-    std::int64_t base[3];
+  // The weights w, offsets d = x_node - x_p and first node of a particle at xi, per axis.
+  struct Spline {
+    std::array<std::array<double, 3>, 3> w, d;
+    std::array<std::int64_t, 3> base;
+  };
+  const auto spline = [&](const double* xi) {
+    Spline out;
     for (int ax = 0; ax < 3; ++ax) {
       const auto wts = bspline_weights(xi[ax] * inv_dx);
-      base[ax] = wts.base;
+      out.base[ax] = wts.base;
       for (int a = 0; a < 3; ++a) {
-        w[ax][a] = wts.w[a];
-        d[ax][a] = static_cast<double>(wts.base + a) * dx - xi[ax];
+        out.w[ax][a] = wts.w[a];
+        out.d[ax][a] = static_cast<double>(wts.base + a) * dx - xi[ax];
       }
     }
+    return out;
+  };
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double xi[3] = {p.x.x[i], p.x.y[i], p.x.z[i]};
+    const auto [w, d, base] = spline(xi);
     const double* C = &p.C[9 * i];
     const double v[3] = {p.v.x[i], p.v.y[i], p.v.z[i]};
     // Particle to grid: m w and m w (v + C d), C d summed x, y, z.
@@ -225,16 +234,7 @@ TEST(Transfers, TheTransfersGiveTheScalarExpressionsBits) {
   const auto& q = s.particles();
   for (std::size_t i = 0; i < p.size(); ++i) {
     const double xi[3] = {p.x.x[i], p.x.y[i], p.x.z[i]};
-    double w[3][3], d[3][3];
-    std::int64_t base[3];
-    for (int ax = 0; ax < 3; ++ax) {
-      const auto wts = bspline_weights(xi[ax] * inv_dx);
-      base[ax] = wts.base;
-      for (int a = 0; a < 3; ++a) {
-        w[ax][a] = wts.w[a];
-        d[ax][a] = static_cast<double>(wts.base + a) * dx - xi[ax];
-      }
-    }
+    const auto [w, d, base] = spline(xi);
     double v[3] = {}, B[9] = {};
     for (int a = 0; a < 3; ++a) {
       double sa[3] = {};
@@ -267,6 +267,8 @@ TEST(Transfers, TheTransfersGiveTheScalarExpressionsBits) {
           << "particle " << i << ", entry " << k;
     }
     EXPECT_EQ(bits(q.x.x[i]), bits(xi[0] + dt * v[0])) << "particle " << i;
+    EXPECT_EQ(bits(q.x.y[i]), bits(xi[1] + dt * v[1])) << "particle " << i;
+    EXPECT_EQ(bits(q.x.z[i]), bits(xi[2] + dt * v[2])) << "particle " << i;
   }
 }
 
