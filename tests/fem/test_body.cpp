@@ -487,6 +487,11 @@ TEST(Body, PointGradientsAreTheShapeGradientsAtTheRulesPoints) {
   const auto& X = body.mesh().nodes;
   const auto rule = mesh::tet_rule_degree2();
   ASSERT_EQ(rule.size(), 4U);
+  const auto det = [](const double M[3][3]) {
+    return M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
+           M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
+           M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
+  };
   double worst = 0.0;
   for (std::size_t e = 0; e < body.num_elements(); e += 7) {
     const auto& tet = body.mesh().tets[e];
@@ -501,11 +506,9 @@ TEST(Body, PointGradientsAreTheShapeGradientsAtTheRulesPoints) {
         }
       }
       // dN/dX = J^-T dN/dxi: solve J^T g = G by Cramer's rule.
-      const double det = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
-                         J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
-                         J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
-      ASSERT_GT(det, 0.0);
-      EXPECT_NEAR(body.point_weight(e, q), p.weight * det, 1e-12 * std::abs(p.weight * det));
+      const double detJ = det(J);
+      ASSERT_GT(detJ, 0.0);
+      EXPECT_NEAR(body.point_weight(e, q), p.weight * detJ, 1e-12 * std::abs(p.weight * detJ));
       const auto g = body.point_gradients(e, q);
       for (int a = 0; a < 10; ++a) {
         const double b[3] = {G[a][0], G[a][1], G[a][2]};
@@ -514,10 +517,7 @@ TEST(Body, PointGradientsAreTheShapeGradientsAtTheRulesPoints) {
           for (int i = 0; i < 3; ++i) {
             for (int j = 0; j < 3; ++j) M[i][j] = j == k ? b[i] : J[j][i];
           }
-          const double dk = M[0][0] * (M[1][1] * M[2][2] - M[1][2] * M[2][1]) -
-                            M[0][1] * (M[1][0] * M[2][2] - M[1][2] * M[2][0]) +
-                            M[0][2] * (M[1][0] * M[2][1] - M[1][1] * M[2][0]);
-          const double expected = dk / det;
+          const double expected = det(M) / detJ;
           worst = std::max(worst, std::abs(g[3 * a + k] - expected) / (1.0 + std::abs(expected)));
         }
       }
