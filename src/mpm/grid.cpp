@@ -233,15 +233,14 @@ void SparseGrid::make_blocks() {
   block_coords_ = std::move(coords);
   for (auto& entry : block_index_) entry.second = place[static_cast<std::size_t>(entry.second)];
   for (std::size_t p = 0; p < np; ++p) home_[p] = slot_number[home_[p]];
-  // Each home's neighbours, and the tasks of the parallel transfer: one task per cube of 4 x 4 x 4
-  // home blocks, coloured by the parity of the cube's coordinates. A task writes into its cube
-  // and one block beyond on the + sides, so two tasks of one colour (a cube apart at least) never
-  // write the same node. Cubes of 4 blocks rather than single blocks: most nodes are then written
-  // within one task, while cached.
+  // Each home's neighbours, and the cubes of 4 x 4 x 4 home blocks that the parallel scatter
+  // runs whole, coloured by the parity of the cube's coordinates. A cube's stencils write into
+  // the cube and one block beyond on the + sides, so only adjacent cubes (which differ in colour)
+  // share nodes. Cubes of 4 blocks rather than single blocks: most nodes are then written within
+  // one cube, while cached.
   neighbours_.resize(nh);
-  for (auto& c : colour_homes_) c.clear();
-  for (auto& c : colour_tasks_) c.assign(1, 0);
-  std::array<std::array<std::int64_t, 3>, 8> last_cube{};
+  cubes_.clear();
+  std::vector<std::array<std::int64_t, 3>> cube_coords;
   for (std::size_t k = 0; k < nb_all; ++k) {
     const int h = home_of_block_[k];
     if (h < 0) continue;
@@ -252,20 +251,36 @@ void SparseGrid::make_blocks() {
     }
     const std::array<std::int64_t, 3> cube = {b[0] >> kCubeShift, b[1] >> kCubeShift,
                                               b[2] >> kCubeShift};
-    const int colour =
-        static_cast<int>((cube[0] & 1) | ((cube[1] & 1) << 1) | ((cube[2] & 1) << 2));
-    auto& homes = colour_homes_[colour];
-    // Homes of one cube are consecutive on the Morton curve.
-    if (!homes.empty() && cube != last_cube[colour]) {
-      colour_tasks_[colour].push_back(static_cast<int>(homes.size()));
+    // The homes of one cube are consecutive on the Morton curve.
+    if (cubes_.empty() || cube != cube_coords.back()) {
+      const int colour =
+          static_cast<int>((cube[0] & 1) | ((cube[1] & 1) << 1) | ((cube[2] & 1) << 2));
+      cubes_.push_back({h, h, colour});
+      cube_coords.push_back(cube);
     }
-    homes.push_back(h);
-    last_cube[colour] = cube;
+    cubes_.back().end_home = h + 1;
   }
-  for (int c = 0; c < 8; ++c) {
-    if (!colour_homes_[c].empty()) {
-      colour_tasks_[c].push_back(static_cast<int>(colour_homes_[c].size()));
+  std::unordered_map<std::uint64_t, int> cube_index;
+  for (std::size_t q = 0; q < cubes_.size(); ++q) {
+    cube_index.emplace(key(cube_coords[q][0], cube_coords[q][1], cube_coords[q][2]),
+                       static_cast<int>(q));
+  }
+  cube_dep_start_.assign(1, 0);
+  cube_deps_.clear();
+  for (std::size_t q = 0; q < cubes_.size(); ++q) {
+    const auto& c = cube_coords[q];
+    for (int i = -1; i <= 1; ++i) {
+      for (int j = -1; j <= 1; ++j) {
+        for (int k = -1; k <= 1; ++k) {
+          const auto it = cube_index.find(key(c[0] + i, c[1] + j, c[2] + k));
+          if (it != cube_index.end() &&
+              cubes_[static_cast<std::size_t>(it->second)].colour < cubes_[q].colour) {
+            cube_deps_.push_back(it->second);
+          }
+        }
+      }
     }
+    cube_dep_start_.push_back(static_cast<int>(cube_deps_.size()));
   }
   home_key_ = keys;
   home_reach_ = reach;
@@ -313,17 +328,43 @@ void SparseGrid::group_particles() {
   for (std::size_t p = 0; p < np; ++p) order_[fill_[home_[p]]++] = static_cast<int>(p);
 }
 
+std::size_t SparseGrid::thread_first_cube(int t, int threads) const {
+  const std::size_t nq = cubes_.size();
+  if (t <= 0) return 0;
+  if (t >= threads) return nq;
+  // The first cube whose first particle is at or beyond the thread's share.
+  const std::size_t target =
+      order_.size() * static_cast<std::size_t>(t) / static_cast<std::size_t>(threads);
+  std::size_t lo = 0, hi = nq;
+  while (lo < hi) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    if (first_particle_of_cube(mid) < target) {
+      lo = mid + 1;
+    } else {
+      hi = mid;
+    }
+  }
+  return lo;
+}
+
 // Zeroes the live blocks of the last step; every other block is zero already. The live blocks
 // lie mostly in runs along memory: each run is cleared with one memset, which the C library does
 // with the widest stores the processor has (a Node of zero bytes is Node{}: +0.0 four times).
 void SparseGrid::zero_live_blocks() {
   static_assert(std::is_trivially_copyable_v<Node>);
-  const long n = static_cast<long>(live_.size());
 #pragma omp parallel
   {
-    // An even share of the live list for each thread.
-    const long threads = omp_get_num_threads(), t = omp_get_thread_num();
-    const long first = n * t / threads, end = n * (t + 1) / threads;
+    // Each thread the live blocks of its run of cubes (from its first cube's first block): the
+    // blocks it wrote and read last.
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const auto first_block = [&](int thread) {
+      const std::size_t q = thread_first_cube(thread, threads);
+      const int b = q < cubes_.size()
+                        ? neighbours_[static_cast<std::size_t>(cubes_[q].first_home)][0]
+                        : static_cast<int>(block_coords_.size());
+      return static_cast<long>(std::lower_bound(live_.begin(), live_.end(), b) - live_.begin());
+    };
+    const long first = first_block(t), end = first_block(t + 1);
     for (long k = first; k < end;) {
       const auto b = static_cast<std::size_t>(live_[static_cast<std::size_t>(k)]);
       std::size_t run = 1;

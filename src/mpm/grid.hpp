@@ -60,12 +60,32 @@ class SparseGrid {
   // is the block that holds the stencil nodes whose local index overflows along those axes. All
   // eight exist for every slot.
   [[nodiscard]] const std::array<int, 8>& neighbours_of_home(int h) const { return neighbours_[h]; }
-  // Home slots of one colour (0..7): the parity of their cube of 4 x 4 x 4 blocks, see below.
-  [[nodiscard]] const std::vector<int>& homes_of_colour(int c) const { return colour_homes_[c]; }
-  // The tasks of colour c: task k is homes_of_colour(c)[tasks[k] .. tasks[k + 1]), the homes of
-  // one cube of 4 x 4 x 4 blocks. Tasks of one colour never write the same node, so they can run
-  // in parallel; the homes of a task lie together along the Morton curve.
-  [[nodiscard]] const std::vector<int>& tasks_of_colour(int c) const { return colour_tasks_[c]; }
+  // The cubes of 4 x 4 x 4 home slots that the scatter works in, in Morton order (the slots'
+  // order). Cube q holds the home slots [first_home, end_home); its colour (0..7) is the parity
+  // of its coordinates. A cube's stencils write into the cube and one block beyond on its + sides,
+  // so two cubes share nodes only if they are adjacent (faces, edges or corners), and adjacent
+  // cubes differ in colour: the scatter runs each cube whole, in one thread, and a node's sums
+  // come in colour order whatever the threads are.
+  struct Cube {
+    int first_home = 0, end_home = 0;
+    int colour = 0;
+  };
+  [[nodiscard]] std::span<const Cube> cubes() const { return cubes_; }
+  // The cubes adjacent to cube q with a lower colour: those whose sums must come before q's.
+  [[nodiscard]] std::span<const int> earlier_neighbours_of_cube(std::size_t q) const {
+    return {cube_deps_.data() + cube_dep_start_[q], cube_deps_.data() + cube_dep_start_[q + 1]};
+  }
+  // Where thread t of `threads` starts in the cubes: the cubes are split into `threads` runs
+  // along the curve with about equal particle counts (thread_first_cube(threads, threads) is the
+  // number of cubes). Every stage that splits space between threads splits it here, so that a
+  // thread finds the nodes it wrote in its own cache.
+  [[nodiscard]] std::size_t thread_first_cube(int t, int threads) const;
+  // Position in particles_in_home_order() of cube q's first particle (q = number of cubes: the
+  // number of particles).
+  [[nodiscard]] std::size_t first_particle_of_cube(std::size_t q) const {
+    return static_cast<std::size_t>(start_[static_cast<std::size_t>(
+        q < cubes_.size() ? cubes_[q].first_home : static_cast<int>(neighbours_.size()))]);
+  }
   // All particles, grouped by home, homes in Morton order.
   [[nodiscard]] std::span<const int> particles_in_home_order() const { return order_; }
   // Particles whose home is slot h (an index into the home slots; often none).
@@ -107,8 +127,8 @@ class SparseGrid {
   std::vector<int> fill_;                // scratch of the sort
   std::vector<int> live_;                // blocks the stencils reach, ascending
   std::vector<std::uint8_t> live_mark_;  // scratch of find_live_blocks
-  std::array<std::vector<int>, 8> colour_homes_;
-  std::array<std::vector<int>, 8> colour_tasks_;  // offsets into colour_homes_
+  std::vector<Cube> cubes_;
+  std::vector<int> cube_dep_start_, cube_deps_;  // earlier neighbours of each cube (CSR)
   long full_rebuilds_ = 0;
 };
 

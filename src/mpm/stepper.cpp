@@ -1,6 +1,7 @@
 #include "mpm/stepper.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <atomic>
@@ -8,6 +9,7 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
+#include <thread>
 
 namespace snapjump::mpm {
 
@@ -145,18 +147,41 @@ void Stepper::particle_to_grid() {
 
 void Stepper::rebuild_grid() { grid_.rebuild(p_.x); }
 
-// One parallel region for the eight colours: the threads meet at each colour's barrier but are
-// not started again for each.
+// One parallel region, no barrier: each thread takes its run of cubes (thread_first_cube) and
+// goes through them colour by colour. Two cubes that share nodes are adjacent and differ in
+// colour; the one of lower colour must add its sums first. Within a thread that is the order it
+// goes in; across threads, a cube waits until its earlier neighbours of other threads are marked
+// done for this step (an acquire load that sees the other thread's release store). A wait is
+// always for a lower colour, which its thread reaches before any wait of a higher one: the waits
+// end. Each node's sums come in the order a single thread gives, whatever the threads.
 void Stepper::scatter_to_grid() {
+  const auto cubes = grid_.cubes();
+  if (cube_done_.size() != cubes.size()) cube_done_.assign(cubes.size(), 0);
+  const std::uint64_t epoch = ++scatter_epoch_;
 #pragma omp parallel
-  for (int colour = 0; colour < 8; ++colour) {
-    const auto& homes = grid_.homes_of_colour(colour);
-    const auto& tasks = grid_.tasks_of_colour(colour);
-    const int nt = static_cast<int>(tasks.size()) - 1;
-#pragma omp for schedule(static)
-    for (int task = 0; task < nt; ++task) {
-      for (int k = tasks[task]; k < tasks[task + 1]; ++k) {
-        for (const int i : grid_.particles_of(homes[k])) scatter(static_cast<std::size_t>(i));
+  {
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const std::size_t first = grid_.thread_first_cube(t, threads),
+                      end = grid_.thread_first_cube(t + 1, threads);
+    for (int colour = 0; colour < 8; ++colour) {
+      for (std::size_t q = first; q < end; ++q) {
+        if (cubes[q].colour != colour) continue;
+        if (threads > 1) {
+          for (const int d : grid_.earlier_neighbours_of_cube(q)) {
+            const auto ds = static_cast<std::size_t>(d);
+            if (ds >= first && ds < end) continue;  // this thread's own: done
+            std::atomic_ref<std::uint64_t> done(cube_done_[ds]);
+            for (int spins = 0; done.load(std::memory_order_acquire) != epoch; ++spins) {
+              if (spins >= 1000) std::this_thread::yield();
+            }
+          }
+        }
+        for (int h = cubes[q].first_home; h < cubes[q].end_home; ++h) {
+          for (const int i : grid_.particles_of(h)) scatter(static_cast<std::size_t>(i));
+        }
+        if (threads > 1) {
+          std::atomic_ref<std::uint64_t>(cube_done_[q]).store(epoch, std::memory_order_release);
+        }
       }
     }
   }
@@ -213,72 +238,25 @@ void Stepper::apply_grid_rules() {
 }
 
 void Stepper::grid_to_particle() {
-  const double inv_dx = 1.0 / options_.dx, dx = options_.dx, dt = options_.dt;
-  const double apic = 4.0 * inv_dx * inv_dx;
-  const std::size_t n = p_.size();
   double vmax2 = 0.0;
   std::atomic<long> bad{-1};
-  // In the grid's home order: particles that share nodes come one after another.
+  // In the grid's home order: particles that share nodes come one after another. Each thread
+  // takes the particles of the cubes it scattered (their nodes are in its cache).
   const auto order = grid_.particles_in_home_order();
-#pragma omp parallel for schedule(static) reduction(max : vmax2)
-  for (std::size_t k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(order[k]);
-    const Stencil st(grid_, p_.x, i, dx);
-    // v = sum w v_node; B = sum w v_node d^T, d = x_node - x_p, summed axis by axis: column z
-    // per node, column y per (a, b) row, column x per a plane. The x and y rows go as a pair
-    // (each lane the scalar sum, in the same order), the z row alone.
-    Pair v_xy = {0, 0}, bx_xy = {0, 0}, by_xy = {0, 0}, bz_xy = {0, 0};
-    double v_z = 0, bx_z = 0, by_z = 0, bz_z = 0;
-    for (int a = 0; a < 3; ++a) {
-      Pair sa_xy = {0, 0};
-      double sa_z = 0;
-      for (int b = 0; b < 3; ++b) {
-        Pair sab_xy = {0, 0};
-        double sab_z = 0;
-        const double wab = st.w[0][a] * st.w[1][b];
-        for (int c = 0; c < 3; ++c) {
-          const auto& g = grid_.nodes[st.node(a, b, c)];
-          // A node of zero weight that no other particle reaches has no mass (and no momentum).
-          const double s = g.m > 0.0 ? wab * st.w[2][c] / g.m : 0.0;
-          Pair p_xy;
-          std::memcpy(&p_xy, &g.px, sizeof p_xy);
-          const Pair q_xy = s * p_xy;
-          const double q_z = s * g.pz;
-          const double dzc = st.d[2][c];
-          sab_xy += q_xy;
-          sab_z += q_z;
-          bz_xy += q_xy * dzc;
-          bz_z += q_z * dzc;
-        }
-        const double dyb = st.d[1][b];
-        sa_xy += sab_xy;
-        sa_z += sab_z;
-        by_xy += sab_xy * dyb;
-        by_z += sab_z * dyb;
+#pragma omp parallel reduction(max : vmax2)
+  {
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const std::size_t first = grid_.first_particle_of_cube(grid_.thread_first_cube(t, threads)),
+                      end = grid_.first_particle_of_cube(grid_.thread_first_cube(t + 1, threads));
+    for (std::size_t k = first; k < end; ++k) {
+      const auto i = static_cast<std::size_t>(order[k]);
+      const double s2 = gather(i);
+      if (!std::isfinite(s2)) {
+        long expected = -1;
+        bad.compare_exchange_strong(expected, static_cast<long>(i));
+      } else {
+        vmax2 = std::max(vmax2, s2);
       }
-      const double dxa = st.d[0][a];
-      v_xy += sa_xy;
-      v_z += sa_z;
-      bx_xy += sa_xy * dxa;
-      bx_z += sa_z * dxa;
-    }
-    const double v[3] = {v_xy[0], v_xy[1], v_z};
-    const double B[9] = {bx_xy[0], by_xy[0], bz_xy[0], bx_xy[1], by_xy[1],
-                         bz_xy[1], bx_z,     by_z,     bz_z};
-    p_.v.x[i] = v[0];
-    p_.v.y[i] = v[1];
-    p_.v.z[i] = v[2];
-    double* C = &p_.C[9 * i];
-    for (int k = 0; k < 9; ++k) C[k] = apic * B[k];
-    p_.x.x[i] += dt * v[0];
-    p_.x.y[i] += dt * v[1];
-    p_.x.z[i] += dt * v[2];
-    const double s2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
-    if (!std::isfinite(s2)) {
-      long expected = -1;
-      bad.compare_exchange_strong(expected, static_cast<long>(i));
-    } else {
-      vmax2 = std::max(vmax2, s2);
     }
   }
   const double t = time_ + options_.dt;
@@ -294,6 +272,64 @@ void Stepper::grid_to_particle() {
         "(docs/popper.md); a larger numerics.grid_spacing allows faster ones",
         t, steps_ + 1, cfl(), max_speed_, options_.max_cfl));
   }
+}
+
+// Particle i's velocity, affine matrix and position from the nodes of its stencil; returns its
+// squared speed.
+double Stepper::gather(std::size_t i) {
+  const double inv_dx = 1.0 / options_.dx, dx = options_.dx, dt = options_.dt;
+  const double apic = 4.0 * inv_dx * inv_dx;
+  const Stencil st(grid_, p_.x, i, dx);
+  // v = sum w v_node; B = sum w v_node d^T, d = x_node - x_p, summed axis by axis: column z
+  // per node, column y per (a, b) row, column x per a plane. The x and y rows go as a pair
+  // (each lane the scalar sum, in the same order), the z row alone.
+  Pair v_xy = {0, 0}, bx_xy = {0, 0}, by_xy = {0, 0}, bz_xy = {0, 0};
+  double v_z = 0, bx_z = 0, by_z = 0, bz_z = 0;
+  for (int a = 0; a < 3; ++a) {
+    Pair sa_xy = {0, 0};
+    double sa_z = 0;
+    for (int b = 0; b < 3; ++b) {
+      Pair sab_xy = {0, 0};
+      double sab_z = 0;
+      const double wab = st.w[0][a] * st.w[1][b];
+      for (int c = 0; c < 3; ++c) {
+        const auto& g = grid_.nodes[st.node(a, b, c)];
+        // A node of zero weight that no other particle reaches has no mass (and no momentum).
+        const double s = g.m > 0.0 ? wab * st.w[2][c] / g.m : 0.0;
+        Pair p_xy;
+        std::memcpy(&p_xy, &g.px, sizeof p_xy);
+        const Pair q_xy = s * p_xy;
+        const double q_z = s * g.pz;
+        const double dzc = st.d[2][c];
+        sab_xy += q_xy;
+        sab_z += q_z;
+        bz_xy += q_xy * dzc;
+        bz_z += q_z * dzc;
+      }
+      const double dyb = st.d[1][b];
+      sa_xy += sab_xy;
+      sa_z += sab_z;
+      by_xy += sab_xy * dyb;
+      by_z += sab_z * dyb;
+    }
+    const double dxa = st.d[0][a];
+    v_xy += sa_xy;
+    v_z += sa_z;
+    bx_xy += sa_xy * dxa;
+    bx_z += sa_z * dxa;
+  }
+  const double v[3] = {v_xy[0], v_xy[1], v_z};
+  const double B[9] = {bx_xy[0], by_xy[0], bz_xy[0], bx_xy[1], by_xy[1],
+                       bz_xy[1], bx_z,     by_z,     bz_z};
+  p_.v.x[i] = v[0];
+  p_.v.y[i] = v[1];
+  p_.v.z[i] = v[2];
+  double* C = &p_.C[9 * i];
+  for (int k = 0; k < 9; ++k) C[k] = apic * B[k];
+  p_.x.x[i] += dt * v[0];
+  p_.x.y[i] += dt * v[1];
+  p_.x.z[i] += dt * v[2];
+  return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
 }
 
 void Stepper::advance_rigid_bodies() {

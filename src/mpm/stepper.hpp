@@ -4,6 +4,7 @@
 // forces come from any ForceProvider.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -107,7 +108,8 @@ class Stepper {
   [[nodiscard]] const parallel::ThreadTuner& thread_tuner() const { return tuner_; }
 
  private:
-  void scatter(std::size_t n);  // one particle's share of particle_to_grid()
+  void scatter(std::size_t n);   // one particle's share of particle_to_grid()
+  double gather(std::size_t i);  // one particle's share of grid_to_particle()
   Particles p_;
   ForceProvider& forces_;
   StepperOptions options_;
@@ -116,6 +118,8 @@ class Stepper {
   std::vector<RigidBody*> bodies_;
   parallel::ThreadTuner tuner_;
   core::Points f_;
+  std::vector<std::uint64_t> cube_done_;  // per cube: the last scatter that finished it
+  std::uint64_t scatter_epoch_ = 0;
   double time_ = 0.0;
   long steps_ = 0;
   double max_speed_ = 0.0;

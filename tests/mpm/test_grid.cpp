@@ -8,6 +8,7 @@
 #include <map>
 #include <numbers>
 #include <random>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -42,11 +43,13 @@ std::vector<std::array<std::int64_t, 3>> stencil_nodes(const SparseGrid& g, std:
   return out;
 }
 
-// The grid's grouping: each particle's stencil starts where the B-spline says; no two tasks of
-// one colour touch a node (so they may run in parallel); a rebuild after a small move groups the
-// particles as a fresh grid does.
-TEST(Grid, ColoursNeverShareANodeAndARebuildEqualsAFreshBuild) {
-  const double dx = 0.002;
+// The grid's grouping: each particle's stencil starts where the B-spline says; two cubes that
+// write a node differ in colour and the later one lists the earlier among its earlier neighbours
+// (so the scatter can order their sums whatever thread runs each); the threads' runs of cubes
+// cover the cubes in order with about equal particle counts; a rebuild after a small move groups
+// the particles as a fresh grid does.
+TEST(Grid, CubesSharingANodeAreOrderedAndARebuildEqualsAFreshBuild) {
+  const double dx = 0.0005;  // the 20 mm cloud spans about three cubes of 16 cells a side
   auto p = random_particles(3000, 11);
   SparseGrid g(dx);
   g.rebuild(p.x);
@@ -56,20 +59,53 @@ TEST(Grid, ColoursNeverShareANodeAndARebuildEqualsAFreshBuild) {
     EXPECT_EQ(first[1], static_cast<std::int64_t>(std::floor(p.x.y[i] / dx - 0.5))) << i;
     EXPECT_EQ(first[2], static_cast<std::int64_t>(std::floor(p.x.z[i] / dx - 0.5))) << i;
   }
-  for (int colour = 0; colour < 8; ++colour) {
-    const auto& homes = g.homes_of_colour(colour);
-    const auto& tasks = g.tasks_of_colour(colour);
-    std::map<std::array<std::int64_t, 3>, std::size_t> owner;  // node -> task
-    for (std::size_t k = 0; k + 1 < tasks.size(); ++k) {
-      for (int h = tasks[k]; h < tasks[k + 1]; ++h) {
-        for (const int q : g.particles_of(homes[static_cast<std::size_t>(h)])) {
-          for (const auto& node : stencil_nodes(g, static_cast<std::size_t>(q))) {
-            const auto [it, fresh] = owner.emplace(node, k);
-            EXPECT_TRUE(fresh || it->second == k) << "colour " << colour << ": tasks " << it->second
-                                                  << " and " << k << " both write a node";
-          }
-        }
+  const auto cubes = g.cubes();
+  ASSERT_GT(cubes.size(), 8U);
+  std::map<std::array<std::int64_t, 3>, std::set<std::size_t>> writers;  // node -> cubes
+  std::size_t grouped = 0;
+  for (std::size_t q = 0; q < cubes.size(); ++q) {
+    if (q > 0) {
+      EXPECT_EQ(cubes[q].first_home, cubes[q - 1].end_home);  // every home in one cube
+    }
+    EXPECT_EQ(g.first_particle_of_cube(q), grouped);
+    for (int h = cubes[q].first_home; h < cubes[q].end_home; ++h) {
+      for (const int i : g.particles_of(h)) {
+        ++grouped;
+        for (const auto& node : stencil_nodes(g, static_cast<std::size_t>(i)))
+          writers[node].insert(q);
       }
+    }
+  }
+  EXPECT_EQ(grouped, p.size());
+  EXPECT_EQ(g.first_particle_of_cube(cubes.size()), p.size());
+  std::size_t shared = 0;
+  for (const auto& [node, qs] : writers) {
+    for (const std::size_t a : qs) {
+      for (const std::size_t b : qs) {
+        if (a == b) continue;
+        ++shared;
+        ASSERT_NE(cubes[a].colour, cubes[b].colour) << "cubes " << a << " and " << b;
+        const std::size_t later = cubes[a].colour > cubes[b].colour ? a : b;
+        const std::size_t earlier = later == a ? b : a;
+        const auto deps = g.earlier_neighbours_of_cube(later);
+        EXPECT_NE(std::find(deps.begin(), deps.end(), static_cast<int>(earlier)), deps.end())
+            << "cube " << later << " does not wait for cube " << earlier;
+      }
+    }
+  }
+  EXPECT_GT(shared, 0U);  // the random cloud has cubes that share nodes
+  for (const int threads : {1, 2, 3, 4}) {
+    EXPECT_EQ(g.thread_first_cube(0, threads), 0U);
+    EXPECT_EQ(g.thread_first_cube(threads, threads), cubes.size());
+    for (int t = 0; t < threads; ++t) {
+      const std::size_t a = g.thread_first_cube(t, threads),
+                        b = g.thread_first_cube(t + 1, threads);
+      ASSERT_LE(a, b);
+      const double share =
+          static_cast<double>(g.first_particle_of_cube(b) - g.first_particle_of_cube(a)) /
+          static_cast<double>(p.size());
+      // Shares differ from an even one by at most one cube's particles (a few percent here).
+      EXPECT_NEAR(share, 1.0 / threads, 0.05) << t << " of " << threads;
     }
   }
   // Move every particle by a tenth of a cell and rebuild; a fresh grid on the same positions
