@@ -9,19 +9,29 @@
 #include <cstddef>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <thread>
+
+// The transfers compiled twice on x86-64, for the baseline and for AVX2 (four doubles in one
+// register); the stepper takes the AVX2 version where the processor has it. AVX2 alone brings no
+// fused multiply-add, so neither version contracts a product and a sum: each lane does the same
+// IEEE operations in both, and both give the same bits (test
+// Threads.TheTransfersBaselineAndAvx2VersionsGiveTheSameBits; it fails with "avx2,fma" here).
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define SNAPJUMP_AVX2 __attribute__((target("avx2")))
+#endif
 
 namespace snapjump::mpm {
 
 namespace {
 
-// Two doubles side by side (a compiler vector: SSE2 on x86-64, NEON on arm64); each lane's
-// arithmetic is the scalar's. (On the baseline x86-64 build, which has no fused multiply-add to
-// contract into; a build for a processor with one may contract scalar and vector expressions
-// differently.)
-using Pair = double __attribute__((vector_size(2 * sizeof(double))));
-static_assert(sizeof(SparseGrid::Node) == 2 * sizeof(Pair) &&
-              offsetof(SparseGrid::Node, py) == sizeof(Pair));
+// Four doubles side by side, a node's (m, px, py, pz) (a compiler vector: two SSE2 registers on
+// the baseline x86-64 build, one AVX2 register, NEON on arm64); each lane's arithmetic is the
+// scalar's. (On builds without fused multiply-add; a build for a processor with one, such as
+// -march=native, may contract scalar and vector expressions differently.)
+using Quad = double __attribute__((vector_size(4 * sizeof(double))));
+static_assert(sizeof(SparseGrid::Node) == sizeof(Quad) && offsetof(SparseGrid::Node, m) == 0 &&
+              offsetof(SparseGrid::Node, pz) == 3 * sizeof(double));
 
 // The 27 grid nodes of a particle's quadratic B-spline stencil, axis by axis: the weight of each
 // of the three nodes along an axis, its offset from the particle, and where it lies in the grid
@@ -59,6 +69,136 @@ struct Stencil {
   }
 };
 
+// Adds particle n's mass and APIC momentum to the 27 nodes of its stencil (and its tag).
+[[gnu::always_inline]] inline void scatter_particle(SparseGrid& grid, const Particles& p, double dx,
+                                                    std::size_t n) {
+  const Stencil st(grid, p.x, n, dx);
+  const double m = p.mass[n];
+  const double* C = &p.C[9 * n];
+  const double v[3] = {p.v.x[n], p.v.y[n], p.v.z[n]};
+  // The APIC velocity v + C (x_node - x_p), built up axis by axis. A node's (m, px, py, pz) is
+  // updated as one vector, (1, u_x, u_y, u_z) times the weighted mass: each lane is the scalar
+  // expression's product and sum (1 + 0 dz is 1 exactly), so the bits are the same.
+  const Quad cz = {0.0, C[2], C[5], C[8]};
+  for (int a = 0; a < 3; ++a) {
+    const double dxa = st.d[0][a];
+    const double ua[3] = {v[0] + C[0] * dxa, v[1] + C[3] * dxa, v[2] + C[6] * dxa};
+    for (int b = 0; b < 3; ++b) {
+      const double dyb = st.d[1][b];
+      const Quad u = {1.0, ua[0] + C[1] * dyb, ua[1] + C[4] * dyb, ua[2] + C[7] * dyb};
+      const double mab = m * st.w[0][a] * st.w[1][b];
+      for (int c = 0; c < 3; ++c) {
+        const double dzc = st.d[2][c];
+        const double mw = mab * st.w[2][c];
+        auto& g = grid.nodes[st.node(a, b, c)];
+        Quad q;
+        std::memcpy(&q, &g.m, sizeof q);
+        q += mw * (u + cz * dzc);
+        std::memcpy(&g.m, &q, sizeof q);
+      }
+    }
+  }
+  if (const std::uint8_t tag = p.tags[n]; tag != 0) {  // most particles carry none
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t node = st.node(a, b, c);
+          grid.tags[node] |= tag;
+          grid.block_tags[node / kBlockNodes] |= tag;
+        }
+      }
+    }
+  }
+}
+
+// Particle i's velocity, affine matrix and position from the nodes of its stencil; returns its
+// squared speed.
+[[gnu::always_inline]] inline double gather_particle(const SparseGrid& grid, Particles& p,
+                                                     double dx, double dt, std::size_t i) {
+  const double inv_dx = 1.0 / dx;
+  const double apic = 4.0 * inv_dx * inv_dx;
+  const Stencil st(grid, p.x, i, dx);
+  // v = sum w v_node; B = sum w v_node d^T, d = x_node - x_p, summed axis by axis: column z
+  // per node, column y per (a, b) row, column x per a plane. A node's (m, px, py, pz) goes as
+  // one vector: lanes 1 to 3 are the x, y and z rows, each the scalar sum in the same order
+  // (lane 0 sums s m, which nothing uses).
+  Quad vq = {0, 0, 0, 0}, bx = {0, 0, 0, 0}, by = {0, 0, 0, 0}, bz = {0, 0, 0, 0};
+  for (int a = 0; a < 3; ++a) {
+    Quad sa = {0, 0, 0, 0};
+    for (int b = 0; b < 3; ++b) {
+      Quad sab = {0, 0, 0, 0};
+      const double wab = st.w[0][a] * st.w[1][b];
+      for (int c = 0; c < 3; ++c) {
+        Quad g;
+        std::memcpy(&g, &grid.nodes[st.node(a, b, c)], sizeof g);
+        // A node of zero weight that no other particle reaches has no mass (and no momentum).
+        const double s = g[0] > 0.0 ? wab * st.w[2][c] / g[0] : 0.0;
+        const Quad q = s * g;
+        sab += q;
+        bz += q * st.d[2][c];
+      }
+      sa += sab;
+      by += sab * st.d[1][b];
+    }
+    vq += sa;
+    bx += sa * st.d[0][a];
+  }
+  const double v[3] = {vq[1], vq[2], vq[3]};
+  const double B[9] = {bx[1], by[1], bz[1], bx[2], by[2], bz[2], bx[3], by[3], bz[3]};
+  p.v.x[i] = v[0];
+  p.v.y[i] = v[1];
+  p.v.z[i] = v[2];
+  double* C = &p.C[9 * i];
+  for (int k = 0; k < 9; ++k) C[k] = apic * B[k];
+  p.x.x[i] += dt * v[0];
+  p.x.y[i] += dt * v[1];
+  p.x.z[i] += dt * v[2];
+  return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+}
+
+// The particles of a run of the home order scattered, or gathered (with the largest squared speed
+// and the first particle whose speed is not finite, -1 if none). Each is compiled twice on x86-64
+// (SNAPJUMP_AVX2 above); the particle's code is inlined into both.
+void scatter_run(SparseGrid& grid, const Particles& p, double dx, std::span<const int> run) {
+  for (const int i : run) scatter_particle(grid, p, dx, static_cast<std::size_t>(i));
+}
+struct Gathered {
+  double vmax2 = 0.0;
+  long bad = -1;
+};
+Gathered gather_run(const SparseGrid& grid, Particles& p, double dx, double dt,
+                    std::span<const int> run) {
+  Gathered out;
+  for (const int i : run) {
+    const double s2 = gather_particle(grid, p, dx, dt, static_cast<std::size_t>(i));
+    if (std::isfinite(s2)) {
+      out.vmax2 = std::max(out.vmax2, s2);
+    } else if (out.bad < 0) {
+      out.bad = i;
+    }
+  }
+  return out;
+}
+#ifdef SNAPJUMP_AVX2
+SNAPJUMP_AVX2 void scatter_run_wide(SparseGrid& grid, const Particles& p, double dx,
+                                    std::span<const int> run) {
+  for (const int i : run) scatter_particle(grid, p, dx, static_cast<std::size_t>(i));
+}
+SNAPJUMP_AVX2 Gathered gather_run_wide(const SparseGrid& grid, Particles& p, double dx, double dt,
+                                       std::span<const int> run) {
+  Gathered out;
+  for (const int i : run) {
+    const double s2 = gather_particle(grid, p, dx, dt, static_cast<std::size_t>(i));
+    if (std::isfinite(s2)) {
+      out.vmax2 = std::max(out.vmax2, s2);
+    } else if (out.bad < 0) {
+      out.bad = i;
+    }
+  }
+  return out;
+}
+#endif
+
 }  // namespace
 
 TimeStep choose_time_step(double elastic_bound, double dx, double expected_speed, double cfl_grid) {
@@ -93,6 +233,9 @@ Stepper::Stepper(Particles particles, ForceProvider& forces, StepperOptions opti
       options_(options),
       grid_(options.dx),
       tuner_(parallel::ThreadTuner::for_process(options.tune_threads)) {
+#ifdef SNAPJUMP_AVX2
+  wide_ = options_.wide_vectors && __builtin_cpu_supports("avx2");
+#endif
   if (!(options_.dt > 0.0) || !(options_.dx > 0.0)) {
     throw std::invalid_argument("stepper needs a positive time step and grid spacing");
   }
@@ -158,6 +301,7 @@ void Stepper::scatter_to_grid() {
   const auto cubes = grid_.cubes();
   if (cube_done_.size() != cubes.size()) cube_done_.assign(cubes.size(), 0);
   const std::uint64_t epoch = ++scatter_epoch_;
+  const auto order = grid_.particles_in_home_order();
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
@@ -176,56 +320,19 @@ void Stepper::scatter_to_grid() {
             }
           }
         }
-        for (int h = cubes[q].first_home; h < cubes[q].end_home; ++h) {
-          for (const int i : grid_.particles_of(h)) scatter(static_cast<std::size_t>(i));
+        const std::span<const int> run(order.data() + grid_.first_particle_of_cube(q),
+                                       order.data() + grid_.first_particle_of_cube(q + 1));
+#ifdef SNAPJUMP_AVX2
+        if (wide_) {
+          scatter_run_wide(grid_, p_, options_.dx, run);
+        } else {
+          scatter_run(grid_, p_, options_.dx, run);
         }
+#else
+        scatter_run(grid_, p_, options_.dx, run);
+#endif
         if (threads > 1) {
           std::atomic_ref<std::uint64_t>(cube_done_[q]).store(epoch, std::memory_order_release);
-        }
-      }
-    }
-  }
-}
-
-// Adds particle n's mass and APIC momentum to the 27 nodes of its stencil (and its tag).
-void Stepper::scatter(std::size_t n) {
-  const double dx = options_.dx;
-  const Stencil st(grid_, p_.x, n, dx);
-  const double m = p_.mass[n];
-  const double* C = &p_.C[9 * n];
-  const double v[3] = {p_.v.x[n], p_.v.y[n], p_.v.z[n]};
-  // The APIC velocity v + C (x_node - x_p), built up axis by axis. A node's (m, px, py, pz) is
-  // updated as two pairs, (1, u_x) and (u_y, u_z) times the weighted mass: each lane is the
-  // scalar expression's product and sum (1 + 0 dz is 1 exactly), so the bits are the same.
-  const Pair cz_lo = {0.0, C[2]}, cz_hi = {C[5], C[8]};
-  for (int a = 0; a < 3; ++a) {
-    const double dxa = st.d[0][a];
-    const double ua[3] = {v[0] + C[0] * dxa, v[1] + C[3] * dxa, v[2] + C[6] * dxa};
-    for (int b = 0; b < 3; ++b) {
-      const double dyb = st.d[1][b];
-      const Pair u_lo = {1.0, ua[0] + C[1] * dyb}, u_hi = {ua[1] + C[4] * dyb, ua[2] + C[7] * dyb};
-      const double mab = m * st.w[0][a] * st.w[1][b];
-      for (int c = 0; c < 3; ++c) {
-        const double dzc = st.d[2][c];
-        const double mw = mab * st.w[2][c];
-        auto& g = grid_.nodes[st.node(a, b, c)];
-        Pair lo, hi;
-        std::memcpy(&lo, &g.m, sizeof lo);
-        std::memcpy(&hi, &g.py, sizeof hi);
-        lo += mw * (u_lo + cz_lo * dzc);
-        hi += mw * (u_hi + cz_hi * dzc);
-        std::memcpy(&g.m, &lo, sizeof lo);
-        std::memcpy(&g.py, &hi, sizeof hi);
-      }
-    }
-  }
-  if (const std::uint8_t tag = p_.tags[n]; tag != 0) {  // most particles carry none
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) {
-        for (int c = 0; c < 3; ++c) {
-          const std::size_t node = st.node(a, b, c);
-          grid_.tags[node] |= tag;
-          grid_.block_tags[node / kBlockNodes] |= tag;
         }
       }
     }
@@ -248,15 +355,17 @@ void Stepper::grid_to_particle() {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
     const std::size_t first = grid_.first_particle_of_cube(grid_.thread_first_cube(t, threads)),
                       end = grid_.first_particle_of_cube(grid_.thread_first_cube(t + 1, threads));
-    for (std::size_t k = first; k < end; ++k) {
-      const auto i = static_cast<std::size_t>(order[k]);
-      const double s2 = gather(i);
-      if (!std::isfinite(s2)) {
-        long expected = -1;
-        bad.compare_exchange_strong(expected, static_cast<long>(i));
-      } else {
-        vmax2 = std::max(vmax2, s2);
-      }
+    const std::span<const int> run(order.data() + first, order.data() + end);
+#ifdef SNAPJUMP_AVX2
+    const Gathered g = wide_ ? gather_run_wide(grid_, p_, options_.dx, options_.dt, run)
+                             : gather_run(grid_, p_, options_.dx, options_.dt, run);
+#else
+    const Gathered g = gather_run(grid_, p_, options_.dx, options_.dt, run);
+#endif
+    vmax2 = std::max(vmax2, g.vmax2);
+    if (g.bad >= 0) {
+      long expected = -1;
+      bad.compare_exchange_strong(expected, g.bad);
     }
   }
   const double t = time_ + options_.dt;
@@ -272,64 +381,6 @@ void Stepper::grid_to_particle() {
         "(docs/popper.md); a larger numerics.grid_spacing allows faster ones",
         t, steps_ + 1, cfl(), max_speed_, options_.max_cfl));
   }
-}
-
-// Particle i's velocity, affine matrix and position from the nodes of its stencil; returns its
-// squared speed.
-double Stepper::gather(std::size_t i) {
-  const double inv_dx = 1.0 / options_.dx, dx = options_.dx, dt = options_.dt;
-  const double apic = 4.0 * inv_dx * inv_dx;
-  const Stencil st(grid_, p_.x, i, dx);
-  // v = sum w v_node; B = sum w v_node d^T, d = x_node - x_p, summed axis by axis: column z
-  // per node, column y per (a, b) row, column x per a plane. The x and y rows go as a pair
-  // (each lane the scalar sum, in the same order), the z row alone.
-  Pair v_xy = {0, 0}, bx_xy = {0, 0}, by_xy = {0, 0}, bz_xy = {0, 0};
-  double v_z = 0, bx_z = 0, by_z = 0, bz_z = 0;
-  for (int a = 0; a < 3; ++a) {
-    Pair sa_xy = {0, 0};
-    double sa_z = 0;
-    for (int b = 0; b < 3; ++b) {
-      Pair sab_xy = {0, 0};
-      double sab_z = 0;
-      const double wab = st.w[0][a] * st.w[1][b];
-      for (int c = 0; c < 3; ++c) {
-        const auto& g = grid_.nodes[st.node(a, b, c)];
-        // A node of zero weight that no other particle reaches has no mass (and no momentum).
-        const double s = g.m > 0.0 ? wab * st.w[2][c] / g.m : 0.0;
-        Pair p_xy;
-        std::memcpy(&p_xy, &g.px, sizeof p_xy);
-        const Pair q_xy = s * p_xy;
-        const double q_z = s * g.pz;
-        const double dzc = st.d[2][c];
-        sab_xy += q_xy;
-        sab_z += q_z;
-        bz_xy += q_xy * dzc;
-        bz_z += q_z * dzc;
-      }
-      const double dyb = st.d[1][b];
-      sa_xy += sab_xy;
-      sa_z += sab_z;
-      by_xy += sab_xy * dyb;
-      by_z += sab_z * dyb;
-    }
-    const double dxa = st.d[0][a];
-    v_xy += sa_xy;
-    v_z += sa_z;
-    bx_xy += sa_xy * dxa;
-    bx_z += sa_z * dxa;
-  }
-  const double v[3] = {v_xy[0], v_xy[1], v_z};
-  const double B[9] = {bx_xy[0], by_xy[0], bz_xy[0], bx_xy[1], by_xy[1],
-                       bz_xy[1], bx_z,     by_z,     bz_z};
-  p_.v.x[i] = v[0];
-  p_.v.y[i] = v[1];
-  p_.v.z[i] = v[2];
-  double* C = &p_.C[9 * i];
-  for (int k = 0; k < 9; ++k) C[k] = apic * B[k];
-  p_.x.x[i] += dt * v[0];
-  p_.x.y[i] += dt * v[1];
-  p_.x.z[i] += dt * v[2];
-  return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
 }
 
 void Stepper::advance_rigid_bodies() {

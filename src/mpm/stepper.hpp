@@ -55,6 +55,9 @@ struct StepperOptions {
   // Let step() choose between one thread and the most allowed by timing both now and then
   // (parallel::ThreadTuner); false: always the most allowed. The results are the same either way.
   bool tune_threads = true;
+  // The transfers' AVX2 version where the processor has one (x86-64); false: the baseline
+  // version everywhere. The results are the same either way (a test compares them).
+  bool wide_vectors = true;
 };
 
 // The time step: the smaller of the elastic bound (cfl_elastic * smallest node spacing / p-wave
@@ -106,10 +109,10 @@ class Stepper {
   [[nodiscard]] double max_speed() const { return max_speed_; }
   [[nodiscard]] double cfl() const { return max_speed_ * options_.dt / options_.dx; }
   [[nodiscard]] const parallel::ThreadTuner& thread_tuner() const { return tuner_; }
+  // Whether the transfers run their AVX2 version (StepperOptions::wide_vectors).
+  [[nodiscard]] bool wide_vectors() const { return wide_; }
 
  private:
-  void scatter(std::size_t n);   // one particle's share of particle_to_grid()
-  double gather(std::size_t i);  // one particle's share of grid_to_particle()
   Particles p_;
   ForceProvider& forces_;
   StepperOptions options_;
@@ -120,6 +123,7 @@ class Stepper {
   core::Points f_;
   std::vector<std::uint64_t> cube_done_;  // per cube: the last scatter that finished it
   std::uint64_t scatter_epoch_ = 0;
+  bool wide_ = false;  // the transfers' AVX2 version is used
   double time_ = 0.0;
   long steps_ = 0;
   double max_speed_ = 0.0;

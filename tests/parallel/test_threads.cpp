@@ -174,6 +174,7 @@ struct StepState {
   mpm::Particles p;
   double container_z = 0.0, plate_force = 0.0;
   std::vector<std::array<std::int64_t, 3>> loaded;  // the plate's loaded nodes after the last step
+  bool wide = false;                                // the transfers' AVX2 version ran
 };
 
 // A cap under pressure, clamped to a container, moving down onto the frictional plate: every
@@ -181,7 +182,7 @@ struct StepState {
 // the stepper is made again from its particles after that many steps (as a resumed run is), so
 // its grid starts afresh instead of keeping its blocks.
 StepState run_steps(const fem::Body& shell, int threads, bool tune, int restart_at = 0,
-                    std::vector<long>* blocks_made = nullptr) {
+                    std::vector<long>* blocks_made = nullptr, bool wide = true) {
   const parallel::ScopedThreadCount count(threads);
   hybrid::BodyForces forces(shell, 9.81, [](double) { return 2000.0; });
   auto particles = hybrid::particles_of(shell);
@@ -192,6 +193,7 @@ StepState run_steps(const fem::Body& shell, int threads, bool tune, int restart_
   }
   mpm::StepperOptions o{shell.stable_time_step(0.3), 0.001, 0.5};
   o.tune_threads = tune;
+  o.wide_vectors = wide;
   mpm::RigidBody container;
   container.mass = 0.05;
   container.vz = -0.5;
@@ -216,7 +218,7 @@ StepState run_steps(const fem::Body& shell, int threads, bool tune, int restart_
     plate_force += plate->force();
     if (blocks_made != nullptr) blocks_made->push_back(s->grid().full_rebuilds());
   }
-  return {s->particles(), container.z, plate_force, plate->loaded_nodes()};
+  return {s->particles(), container.z, plate_force, plate->loaded_nodes(), s->wide_vectors()};
 }
 
 TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
@@ -239,6 +241,24 @@ TEST(Threads, MpmStepIsTheSameAtOneTwoAndFourThreads) {
   // With the tuner switching between one and two threads on its own.
   const auto tuned = run_steps(shell, 2, true);
   EXPECT_TRUE(same_bits(one.p.x.z, tuned.p.x.z) && same_bits(one.p.C, tuned.p.C));
+}
+
+// The transfers' two versions (the baseline processor's and AVX2's, stepper.cpp) give the same
+// bits, at one and two threads.
+TEST(Threads, TheTransfersBaselineAndAvx2VersionsGiveTheSameBits) {
+  const auto shell = small_cap();
+  for (const int threads : {1, 2}) {
+    const auto wide = run_steps(shell, threads, false, 0, nullptr, true);
+    if (!wide.wide) GTEST_SKIP() << "this processor (or build) has no AVX2 version to compare";
+    const auto base = run_steps(shell, threads, false, 0, nullptr, false);
+    ASSERT_FALSE(base.wide);
+    EXPECT_TRUE(same_bits(base.p.x.x, wide.p.x.x) && same_bits(base.p.x.y, wide.p.x.y) &&
+                same_bits(base.p.x.z, wide.p.x.z) && same_bits(base.p.v.x, wide.p.v.x) &&
+                same_bits(base.p.v.y, wide.p.v.y) && same_bits(base.p.v.z, wide.p.v.z) &&
+                same_bits(base.p.C, wide.p.C))
+        << threads << " threads";
+    EXPECT_EQ(std::memcmp(&base.plate_force, &wide.plate_force, sizeof(double)), 0);
+  }
 }
 
 // The grid keeps its blocks while the particles stay within them, and starts afresh in a new
