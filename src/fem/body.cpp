@@ -384,7 +384,8 @@ namespace {
 }  // namespace
 
 template <bool kEnergy>
-bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
+[[gnu::always_inline]] inline bool Body::element_pass(int e, const mesh::Points& x,
+                                                      double* out) const {
   const auto es = static_cast<std::size_t>(e);
   double xe[kTetNodes][3];
   gather(mesh_.tets[es], x, xe);
@@ -433,6 +434,10 @@ bool Body::element_pass(int e, const mesh::Points& x, double* out) const {
   return true;
 }
 
+SNAPJUMP_AVX2 bool Body::element_forces_wide(int e, const mesh::Points& x, double* out) const {
+  return element_pass<false>(e, x, out);
+}
+
 void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {
   ForceScratch scratch;
   internal_forces(x, f, scratch);
@@ -455,9 +460,10 @@ void Body::internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch&
   {
 #pragma omp for schedule(static)
     for (long e = 0; e < ne; ++e) {
-      if (!element_pass<false>(static_cast<int>(e), x, ef + 3 * kTetNodes * e)) {
-        note_inverted(bad, static_cast<int>(e));
-      }
+      double* out = ef + 3 * kTetNodes * e;
+      const bool ok = wide_ ? element_forces_wide(static_cast<int>(e), x, out)
+                            : element_pass<false>(static_cast<int>(e), x, out);
+      if (!ok) note_inverted(bad, static_cast<int>(e));
     }
     // (the loop's barrier: every slot is written, and `bad` is final)
     if (bad.load() < 0) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/wide.hpp"
 #include "mesh/mesh.hpp"
 
 namespace snapjump::fem {
@@ -99,17 +100,25 @@ class Body {
   // f_z -= m_a g for every node (gravity on the lumped masses).
   void add_gravity(double g, mesh::Points& f) const;
 
+  // Whether internal_forces runs the elements' AVX2 version (core/wide.hpp): on where the
+  // processor has AVX2 unless turned off here. The results are the same either way.
+  void set_wide_vectors(bool on) { wide_ = on && core::has_avx2(); }
+  [[nodiscard]] bool wide_vectors() const { return wide_; }
+
  private:
   // Element e at positions x: its strain energy into out[0] (kEnergy) or its nodal forces into
   // out[0..30). False where a quadrature point is inverted.
   template <bool kEnergy>
-  bool element_pass(int e, const mesh::Points& x, double* out) const;
+  inline bool element_pass(int e, const mesh::Points& x, double* out) const;
+  // element_pass<false> compiled for AVX2 (x86-64 builds only).
+  bool element_forces_wide(int e, const mesh::Points& x, double* out) const;
   // Throws std::out_of_range naming `what` unless element e and its point q exist.
   void check_point(std::size_t e, int q, const char* what) const;
 
   mesh::Mesh mesh_;
   Material material_;
   BulkRule bulk_ = BulkRule::full;
+  bool wide_ = core::has_avx2();
   // Reference shape gradients dN/dX, [element][node][3][qp]: the four points' values of one
   // entry side by side, so that the force loop works on the four points at once.
   std::vector<double> grad_;

@@ -12,14 +12,7 @@
 #include <span>
 #include <thread>
 
-// The transfers compiled twice on x86-64, for the baseline and for AVX2 (four doubles in one
-// register); the stepper takes the AVX2 version where the processor has it. AVX2 alone brings no
-// fused multiply-add, so neither version contracts a product and a sum: each lane does the same
-// IEEE operations in both, and both give the same bits (test
-// Threads.TheTransfersBaselineAndAvx2VersionsGiveTheSameBits; it fails with "avx2,fma" here).
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define SNAPJUMP_AVX2 __attribute__((target("avx2")))
-#endif
+#include "core/wide.hpp"
 
 namespace snapjump::mpm {
 
@@ -158,16 +151,14 @@ struct Stencil {
 
 // The particles of a run of the home order scattered, or gathered (with the largest squared speed
 // and the first particle whose speed is not finite, -1 if none). Each is compiled twice on x86-64
-// (SNAPJUMP_AVX2 above); the particle's code is inlined into both.
-void scatter_run(SparseGrid& grid, const Particles& p, double dx, std::span<const int> run) {
-  for (const int i : run) scatter_particle(grid, p, dx, static_cast<std::size_t>(i));
-}
+// (core/wide.hpp); the particle's code is inlined into both.
 struct Gathered {
   double vmax2 = 0.0;
   long bad = -1;
 };
-Gathered gather_run(const SparseGrid& grid, Particles& p, double dx, double dt,
-                    std::span<const int> run) {
+[[gnu::always_inline]] inline Gathered gather_particles(const SparseGrid& grid, Particles& p,
+                                                        double dx, double dt,
+                                                        std::span<const int> run) {
   Gathered out;
   for (const int i : run) {
     const double s2 = gather_particle(grid, p, dx, dt, static_cast<std::size_t>(i));
@@ -179,25 +170,21 @@ Gathered gather_run(const SparseGrid& grid, Particles& p, double dx, double dt,
   }
   return out;
 }
-#ifdef SNAPJUMP_AVX2
+void scatter_run(SparseGrid& grid, const Particles& p, double dx, std::span<const int> run) {
+  for (const int i : run) scatter_particle(grid, p, dx, static_cast<std::size_t>(i));
+}
 SNAPJUMP_AVX2 void scatter_run_wide(SparseGrid& grid, const Particles& p, double dx,
                                     std::span<const int> run) {
   for (const int i : run) scatter_particle(grid, p, dx, static_cast<std::size_t>(i));
 }
+Gathered gather_run(const SparseGrid& grid, Particles& p, double dx, double dt,
+                    std::span<const int> run) {
+  return gather_particles(grid, p, dx, dt, run);
+}
 SNAPJUMP_AVX2 Gathered gather_run_wide(const SparseGrid& grid, Particles& p, double dx, double dt,
                                        std::span<const int> run) {
-  Gathered out;
-  for (const int i : run) {
-    const double s2 = gather_particle(grid, p, dx, dt, static_cast<std::size_t>(i));
-    if (std::isfinite(s2)) {
-      out.vmax2 = std::max(out.vmax2, s2);
-    } else if (out.bad < 0) {
-      out.bad = i;
-    }
-  }
-  return out;
+  return gather_particles(grid, p, dx, dt, run);
 }
-#endif
 
 }  // namespace
 
@@ -233,9 +220,7 @@ Stepper::Stepper(Particles particles, ForceProvider& forces, StepperOptions opti
       options_(options),
       grid_(options.dx),
       tuner_(parallel::ThreadTuner::for_process(options.tune_threads)) {
-#ifdef SNAPJUMP_AVX2
-  wide_ = options_.wide_vectors && __builtin_cpu_supports("avx2");
-#endif
+  wide_ = options_.wide_vectors && core::has_avx2();
   if (!(options_.dt > 0.0) || !(options_.dx > 0.0)) {
     throw std::invalid_argument("stepper needs a positive time step and grid spacing");
   }
@@ -322,15 +307,11 @@ void Stepper::scatter_to_grid() {
         }
         const std::span<const int> run(order.data() + grid_.first_particle_of_cube(q),
                                        order.data() + grid_.first_particle_of_cube(q + 1));
-#ifdef SNAPJUMP_AVX2
         if (wide_) {
           scatter_run_wide(grid_, p_, options_.dx, run);
         } else {
           scatter_run(grid_, p_, options_.dx, run);
         }
-#else
-        scatter_run(grid_, p_, options_.dx, run);
-#endif
         if (threads > 1) {
           std::atomic_ref<std::uint64_t>(cube_done_[q]).store(epoch, std::memory_order_release);
         }
@@ -356,12 +337,8 @@ void Stepper::grid_to_particle() {
     const std::size_t first = grid_.first_particle_of_cube(grid_.thread_first_cube(t, threads)),
                       end = grid_.first_particle_of_cube(grid_.thread_first_cube(t + 1, threads));
     const std::span<const int> run(order.data() + first, order.data() + end);
-#ifdef SNAPJUMP_AVX2
     const Gathered g = wide_ ? gather_run_wide(grid_, p_, options_.dx, options_.dt, run)
                              : gather_run(grid_, p_, options_.dx, options_.dt, run);
-#else
-    const Gathered g = gather_run(grid_, p_, options_.dx, options_.dt, run);
-#endif
     vmax2 = std::max(vmax2, g.vmax2);
     if (g.bad >= 0) {
       long expected = -1;
