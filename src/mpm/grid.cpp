@@ -34,7 +34,7 @@ constexpr std::array<std::uint8_t, 8> kSubsets = [] {
   }
   return t;
 }();
-constexpr int kCubeShift = 2;  // a task's cube is 2^kCubeShift blocks on a side
+constexpr int kCubeShift = 2;  // a cube is 2^kCubeShift blocks on a side
 
 std::uint64_t key(std::int64_t bx, std::int64_t by, std::int64_t bz) {
   return (static_cast<std::uint64_t>(bx + kOffset) << 42) |
@@ -207,7 +207,7 @@ void SparseGrid::make_blocks() {
   }
   // Every block laid out in memory along a Morton curve of their coordinates, and the slots
   // numbered in that order: homes near each other in space are near each other in the order of
-  // the transfers (and share cached nodes), a thread given a stretch of the curve (tasks, homes,
+  // the transfers (and share cached nodes), a thread given a stretch of the curve (cubes, homes,
   // the zeroing) works on a stretch of memory, and the reached blocks' order (the rules' sums)
   // depends on the set of blocks only.
   const std::size_t nb_all = block_coords_.size();
@@ -358,6 +358,7 @@ void SparseGrid::zero_live_blocks() {
     // blocks it wrote and read last.
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
     const auto first_block = [&](int thread) {
+      if (thread == 0) return 0L;
       const std::size_t q = thread_first_cube(thread, threads);
       const int b = q < cubes_.size()
                         ? neighbours_[static_cast<std::size_t>(cubes_[q].first_home)][0]

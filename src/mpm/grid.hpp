@@ -60,12 +60,12 @@ class SparseGrid {
   // is the block that holds the stencil nodes whose local index overflows along those axes. All
   // eight exist for every slot.
   [[nodiscard]] const std::array<int, 8>& neighbours_of_home(int h) const { return neighbours_[h]; }
-  // The cubes of 4 x 4 x 4 home slots that the scatter works in, in Morton order (the slots'
-  // order). Cube q holds the home slots [first_home, end_home); its colour (0..7) is the parity
-  // of its coordinates. A cube's stencils write into the cube and one block beyond on its + sides,
-  // so two cubes share nodes only if they are adjacent (faces, edges or corners), and adjacent
-  // cubes differ in colour: the scatter runs each cube whole, in one thread, and a node's sums
-  // come in colour order whatever the threads are.
+  // The cubes of 4 x 4 x 4 blocks that the scatter works in, those with home slots, in Morton
+  // order (the slots' order). Cube q holds the home slots [first_home, end_home); its colour (0..7)
+  // is the parity of its coordinates. A cube's stencils write into the cube and one block beyond on
+  // its + sides, so two cubes share nodes only if they are adjacent (faces, edges or corners), and
+  // adjacent cubes differ in colour: the scatter runs each cube whole, in one thread, and a node's
+  // sums come in colour order whatever the threads are.
   struct Cube {
     int first_home = 0, end_home = 0;
     int colour = 0;
@@ -77,7 +77,7 @@ class SparseGrid {
   }
   // Where thread t of `threads` starts in the cubes: the cubes are split into `threads` runs
   // along the curve with about equal particle counts (thread_first_cube(threads, threads) is the
-  // number of cubes). Every stage that splits space between threads splits it here, so that a
+  // number of cubes). The scatter, grid to particle and the zeroing split space here, so that a
   // thread finds the nodes it wrote in its own cache.
   [[nodiscard]] std::size_t thread_first_cube(int t, int threads) const;
   // Position in particles_in_home_order() of cube q's first particle (q = number of cubes: the

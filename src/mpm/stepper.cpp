@@ -150,11 +150,11 @@ struct Stencil {
 }
 
 // The particles of a run of the home order scattered, or gathered (with the largest squared speed
-// and the first particle whose speed is not finite, -1 if none). Each is compiled twice on x86-64
-// (core/wide.hpp); the particle's code is inlined into both.
+// and the lowest-numbered particle whose speed is not finite, the largest long if none). Each is
+// compiled twice on x86-64 (core/wide.hpp); the particle's code is inlined into both.
 struct Gathered {
   double vmax2 = 0.0;
-  long bad = -1;
+  long bad = std::numeric_limits<long>::max();
 };
 [[gnu::always_inline]] inline Gathered gather_particles(const SparseGrid& grid, Particles& p,
                                                         double dx, double dt,
@@ -164,8 +164,8 @@ struct Gathered {
     const double s2 = gather_particle(grid, p, dx, dt, static_cast<std::size_t>(i));
     if (std::isfinite(s2)) {
       out.vmax2 = std::max(out.vmax2, s2);
-    } else if (out.bad < 0) {
-      out.bad = i;
+    } else {
+      out.bad = std::min(out.bad, static_cast<long>(i));
     }
   }
   return out;
@@ -300,8 +300,12 @@ void Stepper::scatter_to_grid() {
             const auto ds = static_cast<std::size_t>(d);
             if (ds >= first && ds < end) continue;  // this thread's own: done
             std::atomic_ref<std::uint64_t> done(cube_done_[ds]);
-            for (int spins = 0; done.load(std::memory_order_acquire) != epoch; ++spins) {
-              if (spins >= 1000) std::this_thread::yield();
+            for (int spins = 0; done.load(std::memory_order_acquire) != epoch;) {
+              if (spins < 1000) {
+                ++spins;
+              } else {
+                std::this_thread::yield();
+              }
             }
           }
         }
@@ -327,11 +331,14 @@ void Stepper::apply_grid_rules() {
 
 void Stepper::grid_to_particle() {
   double vmax2 = 0.0;
-  std::atomic<long> bad{-1};
+  // The lowest-numbered particle whose velocity is not finite (none: the particle count), the
+  // same at any thread count.
+  const long none = static_cast<long>(p_.size());
+  long bad = none;
   // In the grid's home order: particles that share nodes come one after another. Each thread
   // takes the particles of the cubes it scattered (their nodes are in its cache).
   const auto order = grid_.particles_in_home_order();
-#pragma omp parallel reduction(max : vmax2)
+#pragma omp parallel reduction(max : vmax2) reduction(min : bad)
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
     const std::size_t first = grid_.first_particle_of_cube(grid_.thread_first_cube(t, threads)),
@@ -340,13 +347,10 @@ void Stepper::grid_to_particle() {
     const Gathered g = wide_ ? gather_run_wide(grid_, p_, options_.dx, options_.dt, run)
                              : gather_run(grid_, p_, options_.dx, options_.dt, run);
     vmax2 = std::max(vmax2, g.vmax2);
-    if (g.bad >= 0) {
-      long expected = -1;
-      bad.compare_exchange_strong(expected, g.bad);
-    }
+    bad = std::min(bad, g.bad);
   }
   const double t = time_ + options_.dt;
-  if (const long i = bad.load(); i >= 0) {
+  if (const long i = bad; i < none) {
     throw StepError(fmt::format("t = {:.6g} s, step {}: particle {} has a non-finite velocity", t,
                                 steps_ + 1, i));
   }

@@ -64,9 +64,6 @@ TEST(Grid, CubesSharingANodeAreOrderedAndARebuildEqualsAFreshBuild) {
   std::map<std::array<std::int64_t, 3>, std::set<std::size_t>> writers;  // node -> cubes
   std::size_t grouped = 0;
   for (std::size_t q = 0; q < cubes.size(); ++q) {
-    if (q > 0) {
-      EXPECT_EQ(cubes[q].first_home, cubes[q - 1].end_home);  // every home in one cube
-    }
     EXPECT_EQ(g.first_particle_of_cube(q), grouped);
     for (int h = cubes[q].first_home; h < cubes[q].end_home; ++h) {
       for (const int i : g.particles_of(h)) {
@@ -94,6 +91,13 @@ TEST(Grid, CubesSharingANodeAreOrderedAndARebuildEqualsAFreshBuild) {
     }
   }
   EXPECT_GT(shared, 0U);  // the random cloud has cubes that share nodes
+  // A thread's share differs from an even one by at most the largest cube's.
+  double largest = 0.0;
+  for (std::size_t q = 0; q < cubes.size(); ++q) {
+    largest = std::max(largest, static_cast<double>(g.first_particle_of_cube(q + 1) -
+                                                    g.first_particle_of_cube(q)) /
+                                    static_cast<double>(p.size()));
+  }
   for (const int threads : {1, 2, 3, 4}) {
     EXPECT_EQ(g.thread_first_cube(0, threads), 0U);
     EXPECT_EQ(g.thread_first_cube(threads, threads), cubes.size());
@@ -104,8 +108,7 @@ TEST(Grid, CubesSharingANodeAreOrderedAndARebuildEqualsAFreshBuild) {
       const double share =
           static_cast<double>(g.first_particle_of_cube(b) - g.first_particle_of_cube(a)) /
           static_cast<double>(p.size());
-      // Shares differ from an even one by at most one cube's particles (a few percent here).
-      EXPECT_NEAR(share, 1.0 / threads, 0.05) << t << " of " << threads;
+      EXPECT_LE(std::abs(share - 1.0 / threads), largest) << t << " of " << threads;
     }
   }
   // Move every particle by a tenth of a cell and rebuild; a fresh grid on the same positions
