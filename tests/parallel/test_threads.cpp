@@ -283,6 +283,18 @@ TEST(Threads, AStepperMadeAgainFromItsParticlesStepsOnAsTheFirstOne) {
   }
 }
 
+// 100 explicit steps of a cap under 3 kPa: the positions, and the internal forces there.
+std::pair<mesh::Points, mesh::Points> loaded_explicit_steps(const fem::Body& shell) {
+  fem::ExplicitOptions o;
+  o.pressure = [](double) { return 3000.0; };
+  o.tune_threads = false;
+  fem::ExplicitDriver d(shell, o);
+  for (int k = 0; k < 100; ++k) d.step();
+  mesh::Points f;
+  shell.internal_forces(d.positions(), f);
+  return {d.positions(), f};
+}
+
 // The elements' forces in their two versions (the baseline processor's and AVX2's, body.cpp)
 // give the same bits: along 100 explicit steps of a loaded cap, for both bulk rules.
 TEST(Threads, TheElementForcesBaselineAndAvx2VersionsGiveTheSameBits) {
@@ -293,14 +305,7 @@ TEST(Threads, TheElementForcesBaselineAndAvx2VersionsGiveTheSameBits) {
     const auto run = [&](bool wide) {
       shell.set_wide_vectors(wide);
       EXPECT_EQ(shell.wide_vectors(), wide);
-      fem::ExplicitOptions o;
-      o.pressure = [](double) { return 3000.0; };
-      o.tune_threads = false;
-      fem::ExplicitDriver d(shell, o);
-      for (int k = 0; k < 100; ++k) d.step();
-      mesh::Points f;
-      shell.internal_forces(d.positions(), f);
-      return std::pair{d.positions(), f};
+      return loaded_explicit_steps(shell);
     };
     const auto [xw, fw] = run(true);
     const auto [xb, fb] = run(false);
@@ -315,18 +320,12 @@ TEST(Threads, InternalForcesPressureVolumeAndExplicitStepsAreTheSameAtOneAndFour
     const auto shell = small_cap(bulk);
     const auto run = [&](int threads) {
       const parallel::ScopedThreadCount count(threads);
-      fem::ExplicitOptions o;
-      o.pressure = [](double) { return 3000.0; };
-      o.tune_threads = false;
-      fem::ExplicitDriver d(shell, o);
-      for (int k = 0; k < 100; ++k) d.step();
-      mesh::Points f;
-      shell.internal_forces(d.positions(), f);
+      const auto [x, f] = loaded_explicit_steps(shell);
       // The pressure load and the cavity volume at the deformed positions (both in parallel
       // over the faces).
       mesh::Points g;
-      shell.cavity_volume_gradient(d.positions(), g);
-      return std::tuple{d.positions(), f, g, std::vector{shell.cavity_volume(d.positions())}};
+      shell.cavity_volume_gradient(x, g);
+      return std::tuple{x, f, g, std::vector{shell.cavity_volume(x)}};
     };
     const auto [x1, f1, g1, v1] = run(1);
     const auto [x4, f4, g4, v4] = run(4);
