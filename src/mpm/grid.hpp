@@ -86,6 +86,11 @@ class SparseGrid {
     return static_cast<std::size_t>(start_[static_cast<std::size_t>(
         q < cubes_.size() ? cubes_[q].first_home : static_cast<int>(neighbours_.size()))]);
   }
+  // The particles of cubes [first, end), in home order (a stretch of particles_in_home_order()).
+  [[nodiscard]] std::span<const int> particles_of_cubes(std::size_t first, std::size_t end) const {
+    return {order_.data() + first_particle_of_cube(first),
+            order_.data() + first_particle_of_cube(end)};
+  }
   // All particles, grouped by home, homes in Morton order.
   [[nodiscard]] std::span<const int> particles_in_home_order() const { return order_; }
   // Particles whose home is slot h (an index into the home slots; often none).

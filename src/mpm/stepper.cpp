@@ -20,8 +20,7 @@ namespace {
 
 // Four doubles side by side, a node's (m, px, py, pz) (a compiler vector: two SSE2 registers on
 // the baseline x86-64 build, one AVX2 register, NEON on arm64); each lane's arithmetic is the
-// scalar's. (On builds without fused multiply-add; a build for a processor with one, such as
-// -march=native, may contract scalar and vector expressions differently.)
+// scalar's (nothing is contracted into a fused multiply-add: -ffp-contract=off, core/wide.hpp).
 using Quad = double __attribute__((vector_size(4 * sizeof(double))));
 static_assert(sizeof(SparseGrid::Node) == sizeof(Quad) && offsetof(SparseGrid::Node, m) == 0 &&
               offsetof(SparseGrid::Node, pz) == 3 * sizeof(double));
@@ -286,7 +285,6 @@ void Stepper::scatter_to_grid() {
   const auto cubes = grid_.cubes();
   if (cube_done_.size() != cubes.size()) cube_done_.assign(cubes.size(), 0);
   const std::uint64_t epoch = ++scatter_epoch_;
-  const auto order = grid_.particles_in_home_order();
 #pragma omp parallel
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
@@ -309,8 +307,7 @@ void Stepper::scatter_to_grid() {
             }
           }
         }
-        const std::span<const int> run(order.data() + grid_.first_particle_of_cube(q),
-                                       order.data() + grid_.first_particle_of_cube(q + 1));
+        const auto run = grid_.particles_of_cubes(q, q + 1);
         if (wide_) {
           scatter_run_wide(grid_, p_, options_.dx, run);
         } else {
@@ -337,13 +334,11 @@ void Stepper::grid_to_particle() {
   long bad = none;
   // In the grid's home order: particles that share nodes come one after another. Each thread
   // takes the particles of the cubes it scattered (their nodes are in its cache).
-  const auto order = grid_.particles_in_home_order();
 #pragma omp parallel reduction(max : vmax2) reduction(min : bad)
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
-    const std::size_t first = grid_.first_particle_of_cube(grid_.thread_first_cube(t, threads)),
-                      end = grid_.first_particle_of_cube(grid_.thread_first_cube(t + 1, threads));
-    const std::span<const int> run(order.data() + first, order.data() + end);
+    const auto run = grid_.particles_of_cubes(grid_.thread_first_cube(t, threads),
+                                              grid_.thread_first_cube(t + 1, threads));
     const Gathered g = wide_ ? gather_run_wide(grid_, p_, options_.dx, options_.dt, run)
                              : gather_run(grid_, p_, options_.dx, options_.dt, run);
     vmax2 = std::max(vmax2, g.vmax2);
