@@ -7,10 +7,16 @@
 // bulk energy at one point per element (fem::BulkRule::centroid), free of volumetric locking;
 // `axisymmetric-full` the axisymmetric body with its bulk energy at the full 3 x 3 rule.
 //
-//   build/inverted_cap axisymmetric|axisymmetric-full THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm
-//   [PHI_deg]]
-//   build/inverted_cap 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm
-//   [PHI_deg]]
+// Every millisecond and at the end of each phase the elements are checked for folds
+// (fem/fold_check.hpp): the first fold ends the probe with its time, pressure and element, unless
+// --keep-going, which counts the checks that found one and goes on (to see where a folded shell
+// ends up). --no-rim-contacts turns off the axisymmetric model's contacts at the rim (the
+// container's face and the inner surface against itself, axi/contact.hpp), to measure what they do.
+//
+//   build/inverted_cap [--keep-going] [--no-rim-contacts] axisymmetric|axisymmetric-full THROUGH
+//   ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
+//   build/inverted_cap [--keep-going] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC]
+//   [R_mm h_mm [PHI_deg]]
 #include <fmt/format.h>
 
 #include <cmath>
@@ -18,6 +24,7 @@
 #include <exception>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "axi/body.hpp"
 #include "axi/dynamics.hpp"
@@ -38,36 +45,86 @@ struct Result {
   double lowest_r = 0.0, lowest_below_rim = 0.0;
 };
 
-// Runs the protocol's pressure history on a driver with step(), time(), apex_z(), rim_z(),
-// lowest(r, z); p is the pressure difference the driver reads.
-template <typename Step, typename Time, typename State>
-Result run(double& p, double pc, double final_dp, Step step, Time time, State state) {
+// Runs the protocol's pressure history on a driver with step(), time(), the state's summary and
+// the fold check (fem::FoldedElement; called every millisecond and at the end of each phase); p is
+// the pressure difference the driver reads.
+template <typename Step, typename Time, typename State, typename Check>
+Result run(double& p, double pc, double final_dp, Step step, Time time, State state, Check check) {
+  double next_check = 1e-3;
+  const auto checked_step = [&] {
+    step();
+    if (time() >= next_check) {
+      next_check += 1e-3;
+      check();
+    }
+  };
   while (time() < 0.1) {
     p = 1.4 * pc * std::min(1.0, time() / 0.02);
-    step();
+    checked_step();
   }
+  check();
   const bool inverted = state().apex_over_rim > 0.0;
   const double t0 = time();
   while (time() < t0 + 0.15) {
     const double f = std::min(1.0, (time() - t0) / 0.05);
     p = 1.4 * pc + f * (final_dp * pc - 1.4 * pc);
-    step();
+    checked_step();
   }
+  check();
   Result r = state();
   r.inverted = inverted;
   return r;
 }
 
+// The fold checks of one probe: the first fold ends it, or (keep_going) is counted.
+struct FoldLog {
+  bool keep_going = false;
+  int checks = 0, folded = 0;
+  std::string first;
+  // Runs check(); a fold is rethrown with the time and pressure, or counted.
+  template <typename Check>
+  void run(Check check, double t, double p_over_pc) {
+    ++checks;
+    try {
+      check();
+    } catch (const fem::FoldedElement& e) {
+      const auto what =
+          fmt::format("at t = {:.4f} s, delta_p = {:.3g} p_c: {}", t, p_over_pc, e.what());
+      if (!keep_going) throw std::runtime_error(what);
+      if (folded++ == 0) first = what;
+    }
+  }
+  [[nodiscard]] std::string summary() const {
+    if (folded == 0) return fmt::format("no fold in {} checks", checks);
+    return fmt::format("a folded element at {} of {} checks, the first {}", folded, checks, first);
+  }
+};
+
 }  // namespace
 
-int main(int argc, char** argv) {
+int main(int argc_all, char** argv_all) {
+  FoldLog folds;
+  bool rim_contacts = true;
+  std::vector<char*> positional;
+  for (int i = 0; i < argc_all; ++i) {
+    const std::string a = argv_all[i];
+    if (a == "--keep-going") {
+      folds.keep_going = true;
+    } else if (a == "--no-rim-contacts") {
+      rim_contacts = false;
+    } else {
+      positional.push_back(argv_all[i]);
+    }
+  }
+  const int argc = static_cast<int>(positional.size());
+  char** argv = positional.data();
   if (argc < 4) {
     fmt::print(
         stderr,
-        "usage: {0} axisymmetric|axisymmetric-full THROUGH ALONG [FINAL_DP_OVER_PC] [R_mm h_mm "
-        "[PHI_deg]]\n"
-        "       {0} 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm "
-        "[PHI_deg]]\n",
+        "usage: {0} [--keep-going] [--no-rim-contacts] axisymmetric|axisymmetric-full THROUGH "
+        "ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n"
+        "       {0} [--keep-going] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] "
+        "[R_mm h_mm [PHI_deg]]\n",
         argv[0]);
     return 2;
   }
@@ -93,6 +150,7 @@ int main(int argc, char** argv) {
       axi::Dynamics d(body, 0.3 * 2.0 / body.highest_frequency());
       d.set_pressure([&p] { return p; });
       d.set_damping(3.0 * damping);
+      d.set_rim_contacts(rim_contacts);
       const auto& x = d.positions();
       r = run(
           p, pc, final_dp, [&] { d.step(); }, [&] { return d.time(); },
@@ -109,10 +167,11 @@ int main(int argc, char** argv) {
             }
             s.lowest_below_rim = rim - lowest;
             return s;
-          });
-      mesh =
-          fmt::format("axisymmetric{}, {} through h x {} along ({:.3g} mm along)",
-                      full ? " (bulk at 3 x 3 points)" : "", through, along, 1e3 * R * phi / along);
+          },
+          [&] { folds.run([&] { body.check_folds(x); }, d.time(), p / pc); });
+      mesh = fmt::format("axisymmetric{}, {} through h x {} along ({:.3g} mm along){}",
+                         full ? " (bulk at 3 x 3 points)" : "", through, along,
+                         1e3 * R * phi / along, rim_contacts ? "" : ", no contacts at the rim");
     } else if (model == "3d" || model == "3d-reduced") {
       const bool reduced = model == "3d-reduced";
       const int layers = std::atoi(argv[2]);
@@ -152,7 +211,8 @@ int main(int argc, char** argv) {
             }
             s.lowest_below_rim = rim - lowest;
             return s;
-          });
+          },
+          [&] { folds.run([&] { body.check_folds(d.positions()); }, d.time(), p / pc); });
       mesh = fmt::format("3D{}, {} layers, element size {:.3g} mm, {} nodes",
                          reduced ? " (bulk at the centroid)" : "", layers, 1e3 * size,
                          body.num_nodes());
@@ -163,14 +223,15 @@ int main(int argc, char** argv) {
     const std::string head = fmt::format("(R, h) = ({:.3g}, {:.3g}) mm, phi = {:.3g} deg, {}",
                                          1e3 * R, 1e3 * h, phi * 180.0 / std::numbers::pi, mesh);
     if (!r.inverted) {
-      fmt::print("{}: did not invert under 1.4 p_c in 0.1 s (nothing to snap back)\n", head);
+      fmt::print("{}: did not invert under 1.4 p_c in 0.1 s (nothing to snap back); {}\n", head,
+                 folds.summary());
       return 0;
     }
     fmt::print(
         "{}: at delta_p = {:.2f} p_c the shell {} (apex {:.2f} mm above the outer rim; lowest "
-        "outer point at r = {:.2f} mm, {:.2f} mm below the rim)\n",
+        "outer point at r = {:.2f} mm, {:.2f} mm below the rim); {}\n",
         head, final_dp, r.apex_over_rim > 0 ? "stays inverted" : "snaps back",
-        1e3 * r.apex_over_rim, 1e3 * r.lowest_r, 1e3 * r.lowest_below_rim);
+        1e3 * r.apex_over_rim, 1e3 * r.lowest_r, 1e3 * r.lowest_below_rim, folds.summary());
   } catch (const std::exception& e) {
     fmt::print(stderr, "error: {}\n", e.what());
     return 1;

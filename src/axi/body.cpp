@@ -4,30 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
+
+#include "axi/quadratic.hpp"
+#include "fem/fold_check.hpp"
 
 namespace snapjump::axi {
 namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
-
-// 1D quadratic Lagrange functions on [-1, 1] at nodes -1, 0, 1, and their derivatives.
-std::array<double, 3> lagrange(double s) {
-  return {0.5 * s * (s - 1.0), 1.0 - s * s, 0.5 * s * (s + 1.0)};
-}
-std::array<double, 3> lagrange_d(double s) { return {s - 0.5, -2.0 * s, s + 0.5}; }
-
-struct Gauss {
-  std::vector<double> x, w;
-};
-Gauss gauss(int n) {
-  if (n == 2) {
-    const double a = 1.0 / std::sqrt(3.0);
-    return {{-a, a}, {1.0, 1.0}};
-  }
-  const double a = std::sqrt(0.6);
-  return {{-a, 0.0, a}, {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0}};
-}
 
 }  // namespace
 
@@ -226,6 +212,87 @@ double Body::element_loop(const Points& x, Points* f) const {
 void Body::internal_forces(const Points& x, Points& f) const { element_loop<false>(x, &f); }
 
 double Body::strain_energy(const Points& x) const { return element_loop<true>(x, nullptr); }
+
+namespace {
+
+// det d(r, z) / d(s, t) of element el at (s, t), s along the meridian, t through h.
+double meridian_det(const std::array<int, 9>& el, const Points& x, double s, double t) {
+  const auto La = lagrange(s), Lb = lagrange(t);
+  const auto dLa = lagrange_d(s), dLb = lagrange_d(t);
+  double rs = 0, rt = 0, zs = 0, zt = 0;
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      const int m = el[3 * a + b];
+      rs += x.r[m] * dLa[a] * Lb[b];
+      rt += x.r[m] * La[a] * dLb[b];
+      zs += x.z[m] * dLa[a] * Lb[b];
+      zt += x.z[m] * La[a] * dLb[b];
+    }
+  }
+  return rs * zt - rt * zs;
+}
+
+}  // namespace
+
+void Body::check_folds(const Points& x) const {
+  std::vector<char> on_axis(nodes_.size(), 0);
+  for (int a : axis_) on_axis[a] = 1;
+  for (std::size_t e = 0; e < elements_.size(); ++e) {
+    const auto& el = elements_[e];
+    for (int m : el) {
+      if (!on_axis[m] && !(x.r[m] > 0.0)) {
+        throw fem::FoldedElement(static_cast<int>(e), 0.0, x.r[m], 0.0, x.z[m],
+                                 fmt::format("its node {} is on or across the axis", m));
+      }
+    }
+    const double sign = meridian_det(el, nodes_, 0.0, 0.0) < 0.0 ? -1.0 : 1.0;
+    const auto found = fem::check_bicubic_on_square(
+        [&](double s, double t) { return sign * meridian_det(el, x, s, t); });
+    if (found.positive) continue;
+    // det F at the point found, and the current place of that point.
+    const double s = found.at[0], t = found.at[1];
+    const auto La = lagrange(s), Lb = lagrange(t);
+    double r = 0, z = 0, r0 = 0;
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        const int m = el[3 * a + b];
+        r += x.r[m] * La[a] * Lb[b];
+        z += x.z[m] * La[a] * Lb[b];
+        r0 += nodes_.r[m] * La[a] * Lb[b];
+      }
+    }
+    const double J = found.min_found / (sign * meridian_det(el, nodes_, s, t)) * r / r0;
+    // What the quadrature points see of it.
+    double qmin = std::numeric_limits<double>::infinity(), qmax = -qmin;
+    for (const Rule* rule : {&full_, &reduced_}) {
+      for (int p = 0; p < rule->points; ++p) {
+        const std::size_t qp = e * rule->points + p;
+        double F11 = 0, F12 = 0, F21 = 0, F22 = 0, rho = 0;
+        for (int m = 0; m < 9; ++m) {
+          F11 += x.r[el[m]] * rule->dR[9 * qp + m];
+          F12 += x.r[el[m]] * rule->dZ[9 * qp + m];
+          F21 += x.z[el[m]] * rule->dR[9 * qp + m];
+          F22 += x.z[el[m]] * rule->dZ[9 * qp + m];
+          rho += x.r[el[m]] * rule->N[9 * qp + m];
+        }
+        const double Jq = (F11 * F22 - F12 * F21) * rho / rule->rho0[qp];
+        qmin = std::min(qmin, Jq);
+        qmax = std::max(qmax, Jq);
+      }
+    }
+    const std::string what =
+        found.min_found <= 0.0
+            ? fmt::format("det F = {:.3g} at (s, t) = ({:.3f}, {:.3f})", J, s, t)
+            : fmt::format(
+                  "det F cannot be shown positive (bounded below by {:.3g} of the "
+                  "meridian determinant after {} pieces)",
+                  found.lower_bound, found.cells);
+    throw fem::FoldedElement(
+        static_cast<int>(e), J, r, 0.0, z,
+        fmt::format("{}, while its quadrature points read det F = {:.3g} to {:.3g}", what, qmin,
+                    qmax));
+  }
+}
 
 double Body::cavity_volume(const Points& x) const {
   const auto g = gauss(3);

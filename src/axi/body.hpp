@@ -68,6 +68,10 @@ class Body {
   // f = -dW/dx at positions x (overwrites f). Throws fem::InvertedElement.
   void internal_forces(const Points& x, Points& f) const;
   [[nodiscard]] double strain_energy(const Points& x) const;
+  // Throws fem::FoldedElement for the lowest-numbered element whose det F is not proven positive
+  // over the whole element at positions x: the meridian determinant by its Bernstein bound
+  // (fem/fold_check.hpp), the hoop stretch by the radius of every node off the axis.
+  void check_folds(const Points& x) const;
   // Volume between the current inner surface and the plane of its rim (exact for the quadratic
   // curve): the integral of pi rho^2 dz along the inner surface from the axis to the rim.
   [[nodiscard]] double cavity_volume(const Points& x) const;

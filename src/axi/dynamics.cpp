@@ -5,7 +5,11 @@
 
 namespace snapjump::axi {
 
-Dynamics::Dynamics(const Body& body, double dt) : body_(body), dt_(dt) {
+Dynamics::Dynamics(const Body& body, double dt)
+    : body_(body),
+      dt_(dt),
+      cone_(rim_cone(body.spec())),
+      self_contact_(body, default_contact_stiffness(body)) {
   if (!(dt > 0.0)) throw std::invalid_argument("the time step must be positive");
   x_ = body.nodes();
   const std::size_t n = x_.size();
@@ -18,6 +22,10 @@ Dynamics::Dynamics(const Body& body, double dt) : body_(body), dt_(dt) {
   for (int a : body.rim()) rim_[a] = 1;
   for (int a : body.axis()) axis_[a] = 1;
   for (int a : body.outer()) outer_[a] = 1;
+  surface_.assign(n, 0);
+  for (const auto* set : {&body.inner(), &body.outer()}) {
+    for (int a : *set) surface_[a] = rim_[a] ? 0 : 1;
+  }
 }
 
 void Dynamics::hold_rim() { container_ = nullptr; }
@@ -39,6 +47,7 @@ void Dynamics::zero_velocities() {
 
 void Dynamics::step() {
   body_.internal_forces(x_, f_);
+  if (rim_contacts_) self_contact_.add_forces(x_, f_);
   if (pressure_) body_.add_pressure_forces(x_, pressure_(), f_);
   const auto& m = body_.mass();
   const std::size_t n = x_.size();
@@ -54,10 +63,17 @@ void Dynamics::step() {
       m_rim += m[a];
     }
     auto& c = *container_;
+    // The cone's push on the shell in the last step pushed the container the other way.
+    f_rim += container_impulse_ / dt_;
     const double acc = (c.applied_force + f_rim) / (c.mass + m_rim);
     c.clamp_force = f_rim - m_rim * acc;
     c.advance(dt_);
   }
+  container_impulse_ = 0.0;
+  cone_impulse_ = 0.0;
+  cone_nodes_ = 0;
+  // Where the rim (and the container's face with it) is at the end of this step.
+  const double rim_dz = container_ ? rim_offset_ + container_->z : 0.0;
   const double cd = 0.5 * damping_ * dt_;
   const double a0 = (1.0 - cd) / (1.0 + cd), a1 = dt_ / (1.0 + cd);
   double impulse = 0.0;
@@ -87,6 +103,7 @@ void Dynamics::step() {
       impulse += jn;
       loaded_[a] = 1;
     }
+    if (rim_contacts_ && surface_[a]) stop_at_cone(a, rim_dz);
     x_.r[a] += dt_ * v_.r[a];
     x_.z[a] += dt_ * v_.z[a];
     if (!std::isfinite(x_.r[a]) || !std::isfinite(x_.z[a])) {
@@ -96,6 +113,20 @@ void Dynamics::step() {
   plate_force_ = impulse / dt_;
   time_ += dt_;
   ++steps_;
+}
+
+// A node whose step would end across the cone, from the clamped face outwards, ends on it: the
+// normal velocity that would carry it across is taken out (frictionless). The container takes
+// the opposite impulse.
+void Dynamics::stop_at_cone(std::size_t a, double rim_dz) {
+  const double dv = cone_.stop(x_.r[a], x_.z[a], v_.r[a], v_.z[a], dt_, rim_dz);
+  if (dv == 0.0) return;
+  v_.r[a] -= dv * cone_.nr();
+  v_.z[a] -= dv * cone_.nz();
+  const double m = body_.mass()[a];
+  cone_impulse_ += m * dv;
+  container_impulse_ += m * dv * cone_.nz();
+  ++cone_nodes_;
 }
 
 double Dynamics::kinetic_energy() const {

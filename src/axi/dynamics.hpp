@@ -6,6 +6,11 @@
 // stops it is the plate's reaction, and Coulomb friction takes up to mu times that impulse from
 // the node's radial momentum, never reversing it. The plate force is the sum of the normal
 // impulses over the step.
+//
+// The container and the fold (axi/contact.hpp): a node whose step would take it across the rim
+// face's cone, from the clamped face outwards, lands on the cone (frictionless, its normal
+// velocity relative to the container taken out, the impulse passed to the container in the next
+// step); the inner surface cannot pass through itself (a penalty, with the internal forces).
 #pragma once
 
 #include <functional>
@@ -13,6 +18,7 @@
 #include <vector>
 
 #include "axi/body.hpp"
+#include "axi/contact.hpp"
 #include "core/rigid_body.hpp"
 
 namespace snapjump::axi {
@@ -31,6 +37,15 @@ class Dynamics {
   // From now on the rim moves with the container along z, at its reference height plus
   // rim_offset plus the container's z, and the plate acts with friction mu.
   void attach(core::RigidBody& container, double mu, double rim_offset);
+  // The contacts at the rim (on by default; off only to measure what they do).
+  void set_rim_contacts(bool on) { rim_contacts_ = on; }
+  // The self-contact's penalty stiffness k [Pa/m] (default: default_contact_stiffness).
+  void set_self_contact_stiffness(double k) { self_contact_ = InnerSelfContact(body_, k); }
+  [[nodiscard]] const InnerSelfContact& self_contact() const { return self_contact_; }
+  // The cone's impulse on the shell in the last step, along its normal [N s], and how many nodes
+  // it stopped.
+  [[nodiscard]] double cone_impulse() const { return cone_impulse_; }
+  [[nodiscard]] int cone_nodes() const { return cone_nodes_; }
   // Moves every node by dz.
   void translate_z(double dz);
   void zero_velocities();
@@ -59,6 +74,8 @@ class Dynamics {
   [[nodiscard]] bool loaded(int a) const { return loaded_[a] != 0; }
 
  private:
+  void stop_at_cone(std::size_t a, double rim_dz);
+
   const Body& body_;
   double dt_;
   double time_ = 0.0;
@@ -72,6 +89,13 @@ class Dynamics {
   std::vector<char> rim_, axis_, outer_, loaded_;
   double rim_offset_ = 0.0;
   double plate_force_ = 0.0;
+  bool rim_contacts_ = true;
+  RimCone cone_;
+  InnerSelfContact self_contact_;
+  std::vector<char> surface_;       // inner or outer surface, off the rim
+  double cone_impulse_ = 0.0;       // along the cone's normal, on the shell, last step [N s]
+  double container_impulse_ = 0.0;  // the cone's z impulse on the container, to pass on [N s]
+  int cone_nodes_ = 0;
 };
 
 }  // namespace snapjump::axi

@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fem/fold_check.hpp"
 #include "mesh/tet10.hpp"
 
 namespace snapjump::fem {
@@ -98,6 +99,17 @@ InvertedElement::InvertedElement(int e, double px, double py, double pz)
           "element {} is inverted or its force is not finite (near ({:.4g}, {:.4g}, {:.4g}) m)", e,
           px, py, pz)),
       element(e),
+      x(px),
+      y(py),
+      z(pz) {}
+
+FoldedElement::FoldedElement(int e, double det_f_, double px, double py, double pz,
+                             const std::string& what)
+    : std::runtime_error(fmt::format("element {} is folded through itself: {} (near ({:.4g}, "
+                                     "{:.4g}, {:.4g}) m)",
+                                     e, what, px, py, pz)),
+      element(e),
+      det_f(det_f_),
       x(px),
       y(py),
       z(pz) {}
@@ -436,6 +448,61 @@ template <bool kEnergy>
 
 SNAPJUMP_AVX2 bool Body::element_forces_wide(int e, const mesh::Points& x, double* out) const {
   return element_pass<false>(e, x, out);
+}
+
+namespace {
+
+std::array<std::array<double, 3>, kTetNodes> element_nodes(const std::array<int, kTetNodes>& tet,
+                                                           const mesh::Points& x) {
+  std::array<std::array<double, 3>, kTetNodes> out{};
+  for (int a = 0; a < kTetNodes; ++a) out[a] = {x.x[tet[a]], x.y[tet[a]], x.z[tet[a]]};
+  return out;
+}
+
+}  // namespace
+
+void Body::check_folds(const mesh::Points& x) const {
+  const long ne = static_cast<long>(mesh_.tets.size());
+  std::atomic<int> bad{-1};
+#pragma omp parallel for schedule(static)
+  for (long e = 0; e < ne; ++e) {
+    const auto& tet = mesh_.tets[static_cast<std::size_t>(e)];
+    if (!check_tet10(element_nodes(tet, mesh_.nodes), element_nodes(tet, x)).positive) {
+      note_inverted(bad, static_cast<int>(e));
+    }
+  }
+  const int e = bad.load();
+  if (e < 0) return;
+  const auto& tet = mesh_.tets[static_cast<std::size_t>(e)];
+  const auto found = check_tet10(element_nodes(tet, mesh_.nodes), element_nodes(tet, x));
+  // What the quadrature points see of it.
+  double qmin = std::numeric_limits<double>::infinity(), qmax = -qmin;
+  for (int q = 0; q < 4; ++q) {
+    const auto g = point_gradients(static_cast<std::size_t>(e), q);
+    double xe[kTetNodes][3], F[9];
+    gather(tet, x, xe);
+    deformation_gradient(xe, g.data(), F);
+    qmin = std::min(qmin, det3(F));
+    qmax = std::max(qmax, det3(F));
+  }
+  const auto N = mesh::tet10_shape(found.at[0], found.at[1], found.at[2]);
+  double p[3] = {};
+  for (int a = 0; a < kTetNodes; ++a) {
+    p[0] += N[a] * x.x[tet[a]];
+    p[1] += N[a] * x.y[tet[a]];
+    p[2] += N[a] * x.z[tet[a]];
+  }
+  const std::string what =
+      found.min_found <= 0.0
+          ? fmt::format("det F = {:.3g} at reference point ({:.3f}, {:.3f}, {:.3f})",
+                        found.min_found, found.at[0], found.at[1], found.at[2])
+          : fmt::format(
+                "det F cannot be shown positive (det(dx/dxi) bounded below by {:.3g} "
+                "after {} pieces)",
+                found.lower_bound, found.cells);
+  throw FoldedElement(e, found.min_found, p[0], p[1], p[2],
+                      fmt::format("{}, while its quadrature points read det F = {:.3g} to {:.3g}",
+                                  what, qmin, qmax));
 }
 
 void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {

@@ -39,6 +39,18 @@ class InvertedElement : public std::runtime_error {
   double x, y, z;  // current position of its first corner
 };
 
+// An element whose det F is not positive somewhere inside it, found by its Bernstein bound
+// (fem/fold_check.hpp) though its quadrature points may all be positive: a fold through itself.
+class FoldedElement : public std::runtime_error {
+ public:
+  // det_f: the smallest det F found (or the bound where none was found at or below 0); (x, y, z)
+  // the current position of that point; what: how it was found.
+  FoldedElement(int element, double det_f, double x, double y, double z, const std::string& what);
+  int element;
+  double det_f;
+  double x, y, z;
+};
+
 // Where the bulk part of the energy, lambda/2 (ln J)^2, is integrated. `full`: at the four
 // points of the degree-2 rule with the rest (the paper's element). `centroid`: at one point per
 // element, the rest at four (selective integration: one volume constraint per element instead of
@@ -81,6 +93,10 @@ class Body {
   // inverted element). The same bits at any thread count.
   void internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch& scratch) const;
   void internal_forces(const mesh::Points& x, mesh::Points& f) const;
+  // Throws FoldedElement for the lowest-numbered element whose det F is not proven positive over
+  // the whole element (its nodes, its quadrature points and every point between:
+  // fem/fold_check.hpp) at positions x. The same element at any thread count.
+  void check_folds(const mesh::Points& x) const;
   // Strain energy W at positions x. Throws InvertedElement.
   [[nodiscard]] double strain_energy(const mesh::Points& x) const;
   // Strain energy density of each element (its energy over its reference volume) [J/m^3].

@@ -38,6 +38,7 @@ class AxiShell final : public ShellModel {
   void zero_velocities() override { dynamics_.zero_velocities(); }
 
   [[nodiscard]] double kinetic_energy() const override { return dynamics_.kinetic_energy(); }
+  void check_folds() const override { body_.check_folds(dynamics_.positions()); }
   [[nodiscard]] double strain_energy() const override {
     return body_.strain_energy(dynamics_.positions());
   }

@@ -201,6 +201,11 @@ int MpmShell::chosen_threads() const {
   return parallel::max_threads();
 }
 
+void MpmShell::check_folds() const {
+  const parallel::ScopedThreadCount threads(chosen_threads());
+  body_->check_folds(positions());
+}
+
 double MpmShell::strain_energy() const {
   const parallel::ScopedThreadCount threads(chosen_threads());
   return body_->strain_energy(positions());

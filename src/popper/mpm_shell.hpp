@@ -49,6 +49,7 @@ class MpmShell final : public ShellModel {
 
   [[nodiscard]] double kinetic_energy() const override;
   [[nodiscard]] double strain_energy() const override;
+  void check_folds() const override;
   [[nodiscard]] double potential_energy(double g) const override;
   [[nodiscard]] double cavity_volume() const override;
   [[nodiscard]] double apex_z() const override;

@@ -261,6 +261,7 @@ bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
       // At most ramp + max_wait: the fraction is of that bound.
       if (progress) progress("buckle", m.time(), m.time() / (st.ramp + st.max_wait));
       if (inverted() && m.kinetic_energy() < st.settled_energy * shell_mass_) {
+        m.check_folds();
         prep.inverted = true;
         prep.message = fmt::format("inverted under {:.0f} Pa ({:.2f} p_c), {}", p_buckle,
                                    st.buckle_factor, describe_onset(prep, pc));
@@ -286,6 +287,7 @@ bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double p
     if (progress && m.steps() % st.progress_every == 0)
       progress("set delta_p_j", m.time() - t0, (m.time() - t0) / (st.down + st.settle));
   }
+  m.check_folds();
   if (!inverted()) {
     prep.message =
         fmt::format("the inverted shell snapped back at delta_p_j = {:.0f} Pa ({:.2f} p_c)",
@@ -327,6 +329,7 @@ void Popper::ground(Preparation& prep, const Progress& progress) {
       progress("ground", m.time(), m.time() / st.max_time);
     }
   }
+  m.check_folds();
 }
 
 namespace {
@@ -445,6 +448,10 @@ Sample Popper::sample() {
   s.kinetic = model_->kinetic_energy() + 0.5 * container_.mass * container_.vz * container_.vz;
   if (case_.popper.wire_stiffness) {
     s.kinetic += 0.5 * counterweight_.mass * counterweight_.vz * counterweight_.vz;
+  }
+  if (!(s.t < next_fold_check_)) {
+    model_->check_folds();
+    next_fold_check_ = s.t + kFoldCheckInterval;
   }
   s.elastic = model_->strain_energy();
   // The counterweight's weight is the popper's less mg; an elastic wire adds its stretch's

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "fem/body.hpp"
 #include "popper/popper.hpp"
 #include "theory/scaling.hpp"
 
@@ -46,6 +47,11 @@ class FabricatedShell : public ::testing::TestWithParam<Shell> {};
 // onset rule (PreparationSettings) gives the buckling pressure, with the reference window on the
 // slow leg. The ramp's first leg takes the suction to 0.6 p_c in 10 ms, where nothing happens.
 // Each cap then inverts and settles. Meshes: 3 mm elements, one quadratic element through h.
+// The thickest, (25, 2.5) mm, inverts through a non-axisymmetric buckle into a state with an
+// element folded through itself next to the clamp (det F < 0 at a node, its quadrature points
+// positive; docs/axisymmetric.md, "The fold at the clamp"): the fold check stops its buckling
+// phase, and the test holds it to that until the 3D model keeps the fold from passing through
+// itself.
 TEST_P(FabricatedShell, BucklesNearZoellyAndInverts) {
   auto c = config::default_case();
   c.shell.R = GetParam().R_mm * 1e-3;
@@ -60,6 +66,10 @@ TEST_P(FabricatedShell, BucklesNearZoellyAndInverts) {
   slow.reference_window = {0.65, 0.85};
   slow.max_wait = 0.06;
   Popper pop(c, resolve_numerics(c), slow);
+  if (GetParam().R_mm == 25 && GetParam().h_mm == 2.5) {
+    EXPECT_THROW((void)pop.buckle(), fem::FoldedElement);
+    return;
+  }
   const auto prep = pop.buckle();
   const double pc = theory::zoelly_pressure(c.material.E, c.shell.h, c.shell.R, c.material.nu);
   const auto& m = pop.model();

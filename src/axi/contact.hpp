@@ -1,0 +1,69 @@
+// Where the axisymmetric shell meets itself and the apparatus.
+//
+// The container: its rigid bottom face lies in the cone of the rim face (the polar angle phi about
+// the centre of curvature, moving with the container), and the rim face itself is clamped to it,
+// so from the inner corner of the rim face (s = R - h/2 from the centre) outwards that cone is
+// rigid: the clamped face, then the acrylic beyond the hole of diameter 2 R sin(phi). No node of
+// the shell may cross it there (axi::Dynamics enforces it exactly, as the plate: RimCone).
+//
+// The fold: where the inverted shell turns back next to the rim, its inner surface faces itself.
+// InnerSelfContact keeps it from passing through itself with a frictionless penalty between each
+// inner-surface node and the inner surface's quadratic segments that do not hold it: a node that
+// has crossed a segment by a gap g < 0 (on the material's side of it, within one thickness) is
+// pushed back by a pressure k |g| over its share of the surface, and the segment's nodes take the
+// opposite force through the shape functions at the closest point. The forces are minus the
+// gradient of the energy sum (k/2) A_a g^2, so the contact conserves energy and the z resultant
+// is zero (each ring pushes the other).
+#pragma once
+
+#include <vector>
+
+#include "axi/body.hpp"
+
+namespace snapjump::axi {
+
+// The rim face's cone in the meridian plane, with the container's offset dz along z.
+struct RimCone {
+  double phi = 0.0;    // polar angle of the rim face [rad]
+  double s_min = 0.0;  // where the rigid part starts, from the centre of curvature [m]
+  // Signed distance of (r, z) into the container (positive: across the face), and the distance
+  // along the face from the centre, for a container shifted by dz.
+  [[nodiscard]] double gap(double r, double z, double dz) const;
+  [[nodiscard]] double along(double r, double z, double dz) const;
+  // Unit normal into the container, (cos phi, sin phi).
+  [[nodiscard]] double nr() const;
+  [[nodiscard]] double nz() const;
+  // The normal velocity to take out of a point at (r, z) moving at (vr, vz) so that its step of
+  // dt ends on the cone (0 when it would end on the shell's side, or over the hole), for the
+  // container at dz at the end of the step. Frictionless: the tangential velocity is kept.
+  [[nodiscard]] double stop(double r, double z, double vr, double vz, double dt, double dz) const;
+};
+RimCone rim_cone(const MeshSpec& spec);
+
+class InnerSelfContact {
+ public:
+  // stiffness: k [Pa/m].
+  InnerSelfContact(const Body& body, double stiffness);
+
+  // f += the contact forces at positions x; returns the penalty energy [J].
+  double add_forces(const Points& x, Points& f) const;
+  // The deepest crossing found by the last add_forces [m] (0 when none), and how many nodes.
+  [[nodiscard]] double deepest() const { return deepest_; }
+  [[nodiscard]] int touching() const { return touching_; }
+  [[nodiscard]] double stiffness() const { return k_; }
+
+ private:
+  const Body* body_;
+  double k_;
+  double depth_limit_;
+  std::vector<double> area_;  // each inner node's share of the reference inner surface [m^2]
+  mutable double deepest_ = 0.0;
+  mutable int touching_ = 0;
+};
+
+// The penalty's default stiffness: the P-wave modulus over the thickness of one element, so that
+// a contact spring is about as stiff as the element it presses on (the explicit step keeps its
+// margin) and a contact pressure p crosses by p / (lambda + 2 mu) of an element's thickness.
+double default_contact_stiffness(const Body& body);
+
+}  // namespace snapjump::axi
