@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 
 namespace snapjump::fem {
 
@@ -56,6 +57,27 @@ std::array<double, 20> tet_bernstein(const std::array<double, 20>& values);
 std::array<double, 16> square_bernstein(const std::array<double, 16>& values);
 // The degree-3 lattice of a tetrahedron as barycentric weights of its four corners.
 const std::array<std::array<double, 4>, 20>& tet_lattice();
+
+// One cell's verdict from its Bernstein coefficients b (its lattice values already in out):
+// true when it must be split; otherwise its bound is taken into out.
+template <std::size_t N>
+bool needs_split(const std::array<double, N>& b, bool last_level, JacobianCheck& out) {
+  double low = b[0];
+  for (double x : b) low = x < low ? x : low;
+  if (low > 0.0 || last_level) {
+    out.lower_bound = low < out.lower_bound ? low : out.lower_bound;
+    if (!(low > 0.0)) out.positive = false;
+    return false;
+  }
+  return true;
+}
+// A lattice value at or below zero: the fold is found, and the search ends.
+inline bool found_fold(JacobianCheck& out) {
+  if (out.min_found > 0.0) return false;
+  out.positive = false;
+  out.lower_bound = out.min_found;
+  return true;
+}
 }  // namespace detail
 
 template <typename Det>
@@ -87,19 +109,8 @@ JacobianCheck check_cubic_on_tetrahedron(const Det& det) {
         out.at = xi;
       }
     }
-    if (out.min_found <= 0.0) {
-      out.positive = false;
-      out.lower_bound = out.min_found;
-      return out;
-    }
-    const auto b = detail::tet_bernstein(v);
-    double low = b[0];
-    for (double x : b) low = x < low ? x : low;
-    if (low > 0.0 || cell.depth == kTetFoldDepth) {
-      out.lower_bound = low < out.lower_bound ? low : out.lower_bound;
-      if (!(low > 0.0)) out.positive = false;
-      continue;
-    }
+    if (detail::found_fold(out)) return out;
+    if (!detail::needs_split(detail::tet_bernstein(v), cell.depth == kTetFoldDepth, out)) continue;
     // Eight pieces: four at the corners, four from the inner octahedron (split along the
     // diagonal between the midpoints of edges 01 and 23).
     const auto mid = [&](int i, int j) {
@@ -149,17 +160,8 @@ JacobianCheck check_bicubic_on_square(const Det& det) {
         }
       }
     }
-    if (out.min_found <= 0.0) {
-      out.positive = false;
-      out.lower_bound = out.min_found;
-      return out;
-    }
-    const auto b = detail::square_bernstein(v);
-    double low = b[0];
-    for (double x : b) low = x < low ? x : low;
-    if (low > 0.0 || cell.depth == kSquareFoldDepth) {
-      out.lower_bound = low < out.lower_bound ? low : out.lower_bound;
-      if (!(low > 0.0)) out.positive = false;
+    if (detail::found_fold(out)) return out;
+    if (!detail::needs_split(detail::square_bernstein(v), cell.depth == kSquareFoldDepth, out)) {
       continue;
     }
     const double sm = 0.5 * (cell.s0 + cell.s1), tm = 0.5 * (cell.t0 + cell.t1);
