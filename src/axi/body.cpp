@@ -15,6 +15,24 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * std::numbers::pi;
 
+// F at one quadrature point of an element with node coordinates xr, xz: the meridian block and
+// the hoop stretch rho / rho_0, from the point's N, dN/dR, dN/dZ (nine each) and rho_0.
+struct PointDeformation {
+  double F11, F12, F21, F22, F33;
+};
+PointDeformation deformation_at(const double* N, const double* dR, const double* dZ, double rho0,
+                                const double* xr, const double* xz) {
+  double F11 = 0, F12 = 0, F21 = 0, F22 = 0, rho = 0;
+  for (int m = 0; m < 9; ++m) {
+    F11 += xr[m] * dR[m];
+    F12 += xr[m] * dZ[m];
+    F21 += xz[m] * dR[m];
+    F22 += xz[m] * dZ[m];
+    rho += xr[m] * N[m];
+  }
+  return {F11, F12, F21, F22, rho / rho0};
+}
+
 }  // namespace
 
 int elements_along(double R, double h, double phi, int through) {
@@ -148,16 +166,8 @@ double Body::element_loop(const Points& x, Points* f) const {
         const double* N = &rule.N[9 * qp];
         const double* dR = &rule.dR[9 * qp];
         const double* dZ = &rule.dZ[9 * qp];
-        double F11 = 0, F12 = 0, F21 = 0, F22 = 0, rho = 0;
-        for (int m = 0; m < 9; ++m) {
-          F11 += xr[m] * dR[m];
-          F12 += xr[m] * dZ[m];
-          F21 += xz[m] * dR[m];
-          F22 += xz[m] * dZ[m];
-          rho += xr[m] * N[m];
-        }
         const double rho0 = rule.rho0[qp];
-        const double F33 = rho / rho0;
+        const auto [F11, F12, F21, F22, F33] = deformation_at(N, dR, dZ, rho0, xr, xz);
         const double d2 = F11 * F22 - F12 * F21;
         const double J = d2 * F33;
         if (!(J > 0.0) || !std::isfinite(J)) {
@@ -263,19 +273,18 @@ void Body::check_folds(const Points& x) const {
     }
     const double J = found.min_found / (sign * meridian_det(el, nodes_, s, t)) * r / r0;
     // What the quadrature points see of it.
+    double xr[9], xz[9];
+    for (int m = 0; m < 9; ++m) {
+      xr[m] = x.r[el[m]];
+      xz[m] = x.z[el[m]];
+    }
     double qmin = std::numeric_limits<double>::infinity(), qmax = -qmin;
     for (const Rule* rule : {&full_, &reduced_}) {
       for (int p = 0; p < rule->points; ++p) {
         const std::size_t qp = e * rule->points + p;
-        double F11 = 0, F12 = 0, F21 = 0, F22 = 0, rho = 0;
-        for (int m = 0; m < 9; ++m) {
-          F11 += x.r[el[m]] * rule->dR[9 * qp + m];
-          F12 += x.r[el[m]] * rule->dZ[9 * qp + m];
-          F21 += x.z[el[m]] * rule->dR[9 * qp + m];
-          F22 += x.z[el[m]] * rule->dZ[9 * qp + m];
-          rho += x.r[el[m]] * rule->N[9 * qp + m];
-        }
-        const double Jq = (F11 * F22 - F12 * F21) * rho / rule->rho0[qp];
+        const auto F = deformation_at(&rule->N[9 * qp], &rule->dR[9 * qp], &rule->dZ[9 * qp],
+                                      rule->rho0[qp], xr, xz);
+        const double Jq = (F.F11 * F.F22 - F.F12 * F.F21) * F.F33;
         qmin = std::min(qmin, Jq);
         qmax = std::max(qmax, Jq);
       }
@@ -295,20 +304,9 @@ void Body::check_folds(const Points& x) const {
 }
 
 double Body::cavity_volume(const Points& x) const {
-  const auto g = gauss(3);
   double V = 0.0;
-  for (std::size_t k = 0; k + 2 < inner_.size(); k += 2) {
-    for (int p = 0; p < 3; ++p) {
-      const auto L = lagrange(g.x[p]);
-      const auto dL = lagrange_d(g.x[p]);
-      double rho = 0, dz = 0;
-      for (int m = 0; m < 3; ++m) {
-        rho += L[m] * x.r[inner_[k + m]];
-        dz += dL[m] * x.z[inner_[k + m]];
-      }
-      V += g.w[p] * std::numbers::pi * rho * rho * dz;
-    }
-  }
+  for_each_inner_point(x, [&](std::size_t, double w, const std::array<double, 3>&, double rho,
+                              double, double dz) { V += w * std::numbers::pi * rho * rho * dz; });
   return V;
 }
 
@@ -316,25 +314,15 @@ void Body::add_pressure_forces(const Points& x, double dp, Points& f) const {
   if (dp == 0.0) return;
   // f_a = -dp * integral of N_a n dA, n = (dz, -drho) / ds out of the cavity (into the material),
   // dA = 2 pi rho ds: exact with three Gauss points on the quadratic curve.
-  const auto g = gauss(3);
-  for (std::size_t k = 0; k + 2 < inner_.size(); k += 2) {
-    for (int p = 0; p < 3; ++p) {
-      const auto L = lagrange(g.x[p]);
-      const auto dL = lagrange_d(g.x[p]);
-      double rho = 0, dr = 0, dz = 0;
-      for (int m = 0; m < 3; ++m) {
-        rho += L[m] * x.r[inner_[k + m]];
-        dr += dL[m] * x.r[inner_[k + m]];
-        dz += dL[m] * x.z[inner_[k + m]];
-      }
-      const double c = dp * g.w[p] * 2.0 * std::numbers::pi * rho;
-      for (int m = 0; m < 3; ++m) {
-        const int a = inner_[k + m];
-        f.r[a] -= c * L[m] * dz;
-        f.z[a] += c * L[m] * dr;
-      }
+  for_each_inner_point(x, [&](std::size_t k, double w, const std::array<double, 3>& L, double rho,
+                              double dr, double dz) {
+    const double c = dp * w * 2.0 * std::numbers::pi * rho;
+    for (int m = 0; m < 3; ++m) {
+      const int a = inner_[k + m];
+      f.r[a] -= c * L[m] * dz;
+      f.z[a] += c * L[m] * dr;
     }
-  }
+  });
 }
 
 double Body::highest_frequency() const {

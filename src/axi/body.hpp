@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "axi/quadratic.hpp"
 #include "fem/body.hpp"
 
 namespace snapjump::axi {
@@ -79,6 +80,14 @@ class Body {
   // inner surface, -dp * integral of N_a n dA with n out of the cavity. Its resultant along z is
   // dp times the area of the inner rim circle: the container's hole takes the opposite.
   void add_pressure_forces(const Points& x, double dp, Points& f) const;
+  // Visits the inner surface's quadrature points (three Gauss points on each of its quadratic
+  // segments, from the axis to the rim) at positions x: visit(k, w, L, rho, dr, dz) with the
+  // segment's first inner node k (its nodes are inner()[k .. k + 2]), the Gauss weight w, the
+  // three shape functions L there, the radius rho and the derivatives of rho and z along the
+  // segment's parameter. Exact for the volume, the pressure load and the area of the quadratic
+  // curve.
+  template <typename Visit>
+  void for_each_inner_point(const Points& x, Visit visit) const;
   // The highest frequency of the undeformed body with free nodes but the axis's radial motion,
   // by power iteration on M^-1 K (K from differences of the internal forces) [rad/s].
   [[nodiscard]] double highest_frequency() const;
@@ -103,6 +112,24 @@ class Body {
   double volume_ = 0.0;
   std::vector<int> axis_, rim_, outer_, inner_;
 };
+
+template <typename Visit>
+void Body::for_each_inner_point(const Points& x, Visit visit) const {
+  const auto g = gauss(3);
+  for (std::size_t k = 0; k + 2 < inner_.size(); k += 2) {
+    for (int p = 0; p < 3; ++p) {
+      const auto L = lagrange(g.x[p]);
+      const auto dL = lagrange_d(g.x[p]);
+      double rho = 0, dr = 0, dz = 0;
+      for (int m = 0; m < 3; ++m) {
+        rho += L[m] * x.r[inner_[k + m]];
+        dr += dL[m] * x.r[inner_[k + m]];
+        dz += dL[m] * x.z[inner_[k + m]];
+      }
+      visit(k, g.w[p], L, rho, dr, dz);
+    }
+  }
+}
 
 // Elements along the meridian for a number through h: the elements' meridian length twice their
 // thickness.

@@ -8,23 +8,9 @@
 
 namespace snapjump::axi {
 
-double RimCone::gap(double r, double z, double dz) const {
-  return r * std::cos(phi) + (z - dz) * std::sin(phi);
+RimCone rim_cone(const MeshSpec& spec) {
+  return {std::cos(spec.phi), std::sin(spec.phi), spec.R - 0.5 * spec.h};
 }
-double RimCone::along(double r, double z, double dz) const {
-  return r * std::sin(phi) - (z - dz) * std::cos(phi);
-}
-double RimCone::nr() const { return std::cos(phi); }
-double RimCone::nz() const { return std::sin(phi); }
-
-double RimCone::stop(double r, double z, double vr, double vz, double dt, double dz) const {
-  const double re = r + dt * vr, ze = z + dt * vz;
-  const double g = gap(re, ze, dz);
-  if (!(g > 0.0) || along(re, ze, dz) < s_min) return 0.0;
-  return g / dt;
-}
-
-RimCone rim_cone(const MeshSpec& spec) { return {spec.phi, spec.R - 0.5 * spec.h}; }
 
 double default_contact_stiffness(const Body& body) {
   const auto& m = body.material();
@@ -34,24 +20,13 @@ double default_contact_stiffness(const Body& body) {
 InnerSelfContact::InnerSelfContact(const Body& body, double stiffness)
     : body_(&body), k_(stiffness), depth_limit_(body.spec().h) {
   // Each node's share of the reference inner surface: the integral of N_a dA, dA = 2 pi rho ds.
-  const auto& in = body.inner();
-  const auto& X = body.nodes();
-  area_.assign(in.size(), 0.0);
-  const auto g = gauss(3);
-  for (std::size_t k = 0; k + 2 < in.size(); k += 2) {
-    for (int p = 0; p < 3; ++p) {
-      const auto L = lagrange(g.x[p]);
-      const auto dL = lagrange_d(g.x[p]);
-      double rho = 0, dr = 0, dz = 0;
-      for (int m = 0; m < 3; ++m) {
-        rho += L[m] * X.r[in[k + m]];
-        dr += dL[m] * X.r[in[k + m]];
-        dz += dL[m] * X.z[in[k + m]];
-      }
-      const double dA = g.w[p] * 2.0 * std::numbers::pi * rho * std::hypot(dr, dz);
-      for (int m = 0; m < 3; ++m) area_[k + m] += L[m] * dA;
-    }
-  }
+  area_.assign(body.inner().size(), 0.0);
+  body.for_each_inner_point(
+      body.nodes(), [&](std::size_t k, double w, const std::array<double, 3>& L, double rho,
+                        double dr, double dz) {
+        const double dA = w * 2.0 * std::numbers::pi * rho * std::hypot(dr, dz);
+        for (int m = 0; m < 3; ++m) area_[k + m] += L[m] * dA;
+      });
 }
 
 namespace {
@@ -87,7 +62,9 @@ Projection project(const double pr[3], const double pz[3], double qr, double qz)
     const double g = (r - qr) * tr + (z - qz) * tz;
     const double H = tr * tr + tz * tz + (r - qr) * cr + (z - qz) * cz;
     if (!(H > 0.0)) break;
-    xi = std::clamp(xi - g / H, -1.0, 1.0);
+    const double next = std::clamp(xi - g / H, -1.0, 1.0);
+    if (next == xi) break;  // a fixed point: further steps would return it again
+    xi = next;
   }
   double r, z;
   at(xi, r, z);
@@ -102,19 +79,23 @@ double InnerSelfContact::add_forces(const Points& x, Points& f) const {
   deepest_ = 0.0;
   touching_ = 0;
   double energy = 0.0;
-  // Segment k holds inner nodes 2k, 2k + 1, 2k + 2 (from the axis to the rim).
+  // The segment from inner node k holds k, k + 1, k + 2 (from the axis to the rim).
+  boxes_.resize(n / 2);
+  for (std::size_t k = 0; k + 2 < n; k += 2) {
+    const double r[3] = {x.r[in[k]], x.r[in[k + 1]], x.r[in[k + 2]]};
+    const double z[3] = {x.z[in[k]], x.z[in[k + 1]], x.z[in[k + 2]]};
+    boxes_[k / 2] = {
+        std::min({r[0], r[1], r[2]}) - depth_limit_, std::max({r[0], r[1], r[2]}) + depth_limit_,
+        std::min({z[0], z[1], z[2]}) - depth_limit_, std::max({z[0], z[1], z[2]}) + depth_limit_};
+  }
   for (std::size_t a = 0; a < n; ++a) {
     const double qr = x.r[in[a]], qz = x.z[in[a]];
     for (std::size_t k = 0; k + 2 < n; k += 2) {
       if (a >= k && a <= k + 2) continue;  // its own segment
+      const Box& b = boxes_[k / 2];
+      if (qr < b.lo_r || qr > b.hi_r || qz < b.lo_z || qz > b.hi_z) continue;
       const double pr[3] = {x.r[in[k]], x.r[in[k + 1]], x.r[in[k + 2]]};
       const double pz[3] = {x.z[in[k]], x.z[in[k + 1]], x.z[in[k + 2]]};
-      // Cheap rejection: farther than the depth limit from every node of the segment's hull.
-      const double lo_r = std::min({pr[0], pr[1], pr[2]}) - depth_limit_;
-      const double hi_r = std::max({pr[0], pr[1], pr[2]}) + depth_limit_;
-      const double lo_z = std::min({pz[0], pz[1], pz[2]}) - depth_limit_;
-      const double hi_z = std::max({pz[0], pz[1], pz[2]}) + depth_limit_;
-      if (qr < lo_r || qr > hi_r || qz < lo_z || qz > hi_z) continue;
       const auto pj = project(pr, pz, qr, qz);
       // Only a projection inside the segment is a crossing of it (an end point belongs to the
       // neighbour's interior or to the surface's ends).

@@ -71,6 +71,13 @@ bool needs_split(const std::array<double, N>& b, bool last_level, JacobianCheck&
   }
   return true;
 }
+// Keeps the smallest value seen and where.
+inline void note_value(JacobianCheck& out, double value, const std::array<double, 3>& at) {
+  if (value < out.min_found) {
+    out.min_found = value;
+    out.at = at;
+  }
+}
 // A lattice value at or below zero: the fold is found, and the search ends.
 inline bool found_fold(JacobianCheck& out) {
   if (out.min_found > 0.0) return false;
@@ -104,10 +111,7 @@ JacobianCheck check_cubic_on_tetrahedron(const Det& det) {
         for (int d = 0; d < 3; ++d) xi[d] += lat[p][k] * cell.c[k][d];
       }
       v[p] = det(xi);
-      if (v[p] < out.min_found) {
-        out.min_found = v[p];
-        out.at = xi;
-      }
+      detail::note_value(out, v[p], xi);
     }
     if (detail::found_fold(out)) return out;
     if (!detail::needs_split(detail::tet_bernstein(v), cell.depth == kTetFoldDepth, out)) continue;
@@ -154,10 +158,7 @@ JacobianCheck check_bicubic_on_square(const Det& det) {
       for (int j = 0; j < 4; ++j) {
         const double t = cell.t0 + (cell.t1 - cell.t0) * j / 3.0;
         v[4 * i + j] = det(s, t);
-        if (v[4 * i + j] < out.min_found) {
-          out.min_found = v[4 * i + j];
-          out.at = {s, t, 0.0};
-        }
+        detail::note_value(out, v[4 * i + j], {s, t, 0.0});
       }
     }
     if (detail::found_fold(out)) return out;
