@@ -4,8 +4,8 @@
 // mirror-buckling energy prefactor, and the prefactor bounds alpha_r, alpha_e, alpha_F,
 // alpha_t that the paper takes from them.
 //
-// Problem statement: shared/reference/shell-plane-contact.md.  Method, checks and every
-// computed number beside the paper's: docs/contact-solver.md.
+// Problem statement, method, checks and every computed number beside the paper's:
+// docs/contact-solver.md.
 //
 // Rescaled units (nu drops out of the problem):
 //   kappa = 12 (1 - nu^2),  l = sqrt(h R) / kappa^(1/4),  W = l^2 / R = h / sqrt(kappa),

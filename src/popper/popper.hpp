@@ -89,8 +89,8 @@ struct Preparation {
   std::string message;       // what happened, in words
 };
 
-// The quasi-static phases' settings (../shared/guide/simulation.md: only their end states
-// matter, so these choose how to get there, not what the popper does after the release).
+// The quasi-static phases' settings (only their end states matter, docs/popper.md; so these
+// choose how to get there, not what the popper does after the release).
 struct PreparationSettings {
   // Phase 1, buckle: the suction ramps to buckle_factor p_c (Zoelly's p_c of the case's R, h;
   // above 1 so that the perfect cap, which buckles near p_c, is sure to go) over ramp, then is
