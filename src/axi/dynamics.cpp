@@ -56,20 +56,18 @@ void Dynamics::step() {
   }
   // The container and the rim move as one body: the rim nodes' forces act on it, and the clamp
   // force is what the shell exerts on the container itself.
+  double m_rim = 0.0;
   if (container_) {
-    double f_rim = 0.0, m_rim = 0.0;
+    double f_rim = 0.0;
     for (int a : body_.rim()) {
       f_rim += f_.z[a];
       m_rim += m[a];
     }
     auto& c = *container_;
-    // The cone's push on the shell in the last step pushed the container the other way.
-    f_rim += container_impulse_ / dt_;
     const double acc = (c.applied_force + f_rim) / (c.mass + m_rim);
     c.clamp_force = f_rim - m_rim * acc;
     c.advance(dt_);
   }
-  container_impulse_ = 0.0;
   cone_impulse_ = 0.0;
   cone_nodes_ = 0;
   // Where the rim (and the container's face with it) is at the end of this step.
@@ -110,6 +108,11 @@ void Dynamics::step() {
       throw fem::InvertedElement(-1, x_.r[a], 0.0, x_.z[a]);
     }
   }
+  // What the cone took from the shell along z pushes the container (and the rim with it) the
+  // other way, from the next step on.
+  if (container_ && cone_impulse_ != 0.0) {
+    container_->vz += cone_impulse_ * cone_.nz() / (container_->mass + m_rim);
+  }
   plate_force_ = impulse / dt_;
   time_ += dt_;
   ++steps_;
@@ -125,7 +128,6 @@ void Dynamics::stop_at_cone(std::size_t a, double rim_dz) {
   v_.z[a] -= dv * cone_.nz();
   const double m = body_.mass()[a];
   cone_impulse_ += m * dv;
-  container_impulse_ += m * dv * cone_.nz();
   ++cone_nodes_;
 }
 

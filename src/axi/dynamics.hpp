@@ -9,8 +9,9 @@
 //
 // The container and the fold (axi/contact.hpp): a node whose step would take it across the rim
 // face's cone, from the clamped face outwards, lands on the cone (frictionless, its normal
-// velocity relative to the container taken out, the impulse passed to the container in the next
-// step); the inner surface cannot pass through itself (a penalty, with the internal forces).
+// velocity relative to the container taken out, the container given the opposite impulse in
+// the same step); the inner surface cannot pass through itself (a penalty, with the internal
+// forces).
 #pragma once
 
 #include <functional>
@@ -92,9 +93,8 @@ class Dynamics {
   bool rim_contacts_ = true;
   RimCone cone_;
   InnerSelfContact self_contact_;
-  std::vector<char> surface_;       // inner or outer surface, off the rim
-  double cone_impulse_ = 0.0;       // along the cone's normal, on the shell, last step [N s]
-  double container_impulse_ = 0.0;  // the cone's z impulse on the container, to pass on [N s]
+  std::vector<char> surface_;  // inner or outer surface, off the rim
+  double cone_impulse_ = 0.0;  // along the cone's normal, on the shell, last step [N s]
   int cone_nodes_ = 0;
 };
 
