@@ -30,6 +30,10 @@ struct MeshSpec {
   double phi = 0.0;  // polar angle of the rim [rad]
   int through = 4;   // elements through h
   int along = 0;     // elements along the meridian
+  // The first element's meridian length over the last's (apex over rim; 1: uniform), the lengths
+  // in geometric progression, so that the elements shrink towards the clamp, where the inverted
+  // shell folds.
+  double rim_grading = 1.0;
   // The bulk part at 2 x 2 Gauss points (true) or at the full 3 x 3 rule with the rest (false:
   // the 3D model's default integration, which locks at nu near 1/2).
   bool reduced_bulk = true;
@@ -130,6 +134,9 @@ void Body::for_each_inner_point(const Points& x, Visit visit) const {
     }
   }
 }
+
+// The polar angles of the element corners along the meridian, 0 to spec.phi (along + 1 values).
+std::vector<double> corner_angles(const MeshSpec& spec);
 
 // Elements along the meridian for a number through h: the elements' meridian length twice their
 // thickness.

@@ -61,6 +61,8 @@ class InnerSelfContact {
   [[nodiscard]] double deepest() const { return deepest_; }
   [[nodiscard]] int touching() const { return touching_; }
   [[nodiscard]] double stiffness() const { return k_; }
+  // Each inner node's share of the reference inner surface [m^2], in the order of inner().
+  [[nodiscard]] const std::vector<double>& areas() const { return area_; }
 
  private:
   const Body* body_;

@@ -1,0 +1,112 @@
+// The clamped cap's quasi-static pressure-volume branch in the axisymmetric model
+// (axi/static_branch.hpp): p_c, p_- and, with --csv, every point (V / V0, dp / p_c Zoelly, apex
+// displacement, Newton iterations, deepest self-contact crossing).
+//
+//   build/static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V_OVER_V0] [--grading G]
+//                       [--end-dp DP_OVER_P_ZOELLY]
+//                       THROUGH ALONG [R_mm h_mm [PHI_deg [NU]]]
+#include "axi/static_branch.hpp"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "axi/body.hpp"
+#include "theory/scaling.hpp"
+
+namespace {
+
+using namespace snapjump;
+
+constexpr double kE = 1.2e6, kRho = 1160.0;
+
+int run(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  axi::BranchOptions o;
+  std::string csv;
+  std::vector<double> pos;
+  double end_dp = std::numeric_limits<double>::quiet_NaN();
+  double grading = 1.0;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    if (args[i] == "--no-contacts") {
+      o.contacts = false;
+    } else if (args[i] == "--csv" && i + 1 < args.size()) {
+      csv = args[++i];
+    } else if (args[i] == "--step" && i + 1 < args.size()) {
+      o.step = std::stod(args[++i]);
+    } else if (args[i] == "--grading" && i + 1 < args.size()) {
+      grading = std::stod(args[++i]);
+    } else if (args[i] == "--end-dp" && i + 1 < args.size()) {
+      end_dp = std::stod(args[++i]);
+    } else if (args[i] == "--end" && i + 1 < args.size()) {
+      o.end_volume = std::stod(args[++i]);
+    } else {
+      pos.push_back(std::stod(args[i]));
+    }
+  }
+  if (pos.size() < 2) {
+    std::fprintf(stderr,
+                 "usage: static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V/V0] "
+                 "THROUGH ALONG [R_mm h_mm [PHI_deg [NU]]]\n");
+    return 2;
+  }
+  const double R = pos.size() > 2 ? pos[2] * 1e-3 : 0.030;
+  const double h = pos.size() > 3 ? pos[3] * 1e-3 : 0.002;
+  const double phi = (pos.size() > 4 ? pos[4] : 80.0) * std::numbers::pi / 180.0;
+  const double nu = pos.size() > 5 ? pos[5] : 0.45;
+  const axi::Body body({.R = R,
+                        .h = h,
+                        .phi = phi,
+                        .through = static_cast<int>(pos[0]),
+                        .along = static_cast<int>(pos[1]),
+                        .rim_grading = grading},
+                       fem::Material::from_young(kE, nu, kRho));
+  const double pc = theory::zoelly_pressure(kE, h, R, nu);
+  o.p_ref = pc;
+  o.end_dp = end_dp * pc;
+  std::FILE* out = csv.empty() ? nullptr : std::fopen(csv.c_str(), "w");
+  if (out) std::fprintf(out, "v,dp_over_pc,apex_z_mm,iterations,contact_depth_um\n");
+  double V0 = body.cavity_volume(body.nodes());
+  o.progress = [&](const axi::BranchPoint& p) {
+    if (out) {
+      std::fprintf(out, "%.8g,%.8g,%.8g,%d,%.4g\n", p.volume / V0, p.dp / pc, 1e3 * p.apex_z,
+                   p.iterations, 1e6 * p.contact_depth);
+    }
+  };
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto b = axi::trace_static_branch(body, o);
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (out) std::fclose(out);
+  fmt::print(
+      "(R, h) = ({:g}, {:g}) mm, phi {:g} deg, nu {:g}, {} x {} elements, contacts {}: {} points, "
+      "{:.1f} s, rim grading {:g}\n",
+      1e3 * R, 1e3 * h, phi * 180 / std::numbers::pi, nu, body.spec().along, body.spec().through,
+      o.contacts ? "on" : "off", b.points.size(), wall, grading);
+  fmt::print("  p_c = {:.6g} Pa = {:.5f} p_Zoelly at V / V0 = {:.4f}\n", b.p_c, b.p_c / pc, b.v_c);
+  fmt::print("  p_- = {:.6g} Pa = {:.5f} p_Zoelly at V / V0 = {:.4f}\n", b.p_minus, b.p_minus / pc,
+             b.v_minus);
+  fmt::print("  p_hold = {:.6g} Pa = {:.5f} p_Zoelly at V / V0 = {:.4f}\n", b.p_hold, b.p_hold / pc,
+             b.v_hold);
+  fmt::print(
+      "  last point V / V0 = {:.4f}, dp = {:.5f} p_Zoelly, {}stable under pressure control\n",
+      b.points.back().volume / V0, b.points.back().dp / pc, b.stable ? "" : "not ");
+  fmt::print("  {}\n", b.reached_end ? "reached the end volume" : b.stop_reason);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,85 @@
+// The clamped cap's quasi-static pressure-volume branch in the axisymmetric model: equilibria of
+// axi::Body with its rim face held (the container at rest), no gravity and no plate, under a
+// pressure difference dp (outside minus inside) on its inner surface, followed from the natural
+// state through buckling to past the inverted state.
+//
+// The branch is traced by pseudo-arclength continuation in the plane of the normalised cavity
+// volume v = V / V0 and pressure q = dp / p_ref: each new point solves the equilibrium together
+// with (v - v_k) t_v + (q - q_k) t_q = ds, t being the unit secant of the last two points. This
+// passes the maximum of dp (buckling, p_c) and, where the volume turns back too, that turn.
+// Newton's method on the bordered system; the stiffness from central differences of the forces,
+// node colours at a time (two nodes share a colour when no element holds both), and the
+// contacts' part node by node (they couple nodes that no element joins).
+//
+// The contacts are those of the dynamics (axi/contact.hpp), made quasi-static: the inner surface's
+// self-contact penalty as it is, and the container's cone as a penalty of the same stiffness on
+// the inner surface's nodes (in the dynamics it acts exactly; a static solve needs a smooth
+// energy). Every converged point is checked for folds (fem::FoldedElement stops the branch there,
+// and the branch up to it is kept).
+//
+// p_c is the first maximum of dp. After it the branch may fall and rise more than once (a partly
+// inverted shell can hold at a suction of its own); two of its minima matter under pressure
+// control:
+//   p_hold, the last minimum before the inverted end: the suction down to which the fully
+//     inverted shell stays inverted (below it, it snaps towards its natural shape);
+//   p_-, the lowest dp after p_c: below it no buckled equilibrium is left on the branch.
+// p_- > 0 means the inverted cap needs suction to stay inverted (monostable); p_- < 0 means it
+// stays inverted at dp = 0 and needs overpressure to evert (bistable). Each extremum is refined
+// by a parabola through the three points around it. Only axisymmetric states are on the branch:
+// a non-axisymmetric mode could lower p_c and raise p_hold.
+#pragma once
+
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "axi/body.hpp"
+
+namespace snapjump::axi {
+
+struct BranchPoint {
+  double volume = 0.0;         // cavity volume [m^3]
+  double dp = 0.0;             // pressure difference, outside minus inside [Pa]
+  double apex_z = 0.0;         // displacement of the outer apex node along z [m]
+  int iterations = 0;          // Newton iterations it took
+  double contact_depth = 0.0;  // the deepest self-contact crossing there [m]
+};
+
+struct BranchOptions {
+  double p_ref = 0.0;        // pressure scale [Pa] (e.g. the classical p_c); must be > 0
+  double step = 0.02;        // first and largest arclength step in (v, q)
+  double min_step = 1e-5;    // below this the continuation gives up
+  double end_volume = -1.0;  // stop once v = V / V0 falls below this
+  // Or, past p_c and a minimum, stop once dp rises to end_dp [Pa] (NaN: not used), and solve for
+  // the equilibrium at exactly end_dp (StaticBranch::state).
+  double end_dp = std::numeric_limits<double>::quiet_NaN();
+  int max_points = 5000;
+  bool contacts = true;     // self-contact and the container's cone
+  double tolerance = 1e-8;  // Newton: |residual| below this times p_ref times the rim's area
+  bool check_folds = true;  // at every converged point
+  std::function<void(const BranchPoint&)> progress;  // each converged point
+};
+
+struct StaticBranch {
+  std::vector<BranchPoint> points;
+  double V0 = 0.0;  // the natural cavity volume [m^3]
+  double p_c = std::numeric_limits<double>::quiet_NaN();
+  double p_minus = std::numeric_limits<double>::quiet_NaN();  // NaN: not reached
+  double p_hold = std::numeric_limits<double>::quiet_NaN();   // NaN: the end not reached
+  double v_c = std::numeric_limits<double>::quiet_NaN();      // v = V / V0 at each
+  double v_minus = std::numeric_limits<double>::quiet_NaN();
+  double v_hold = std::numeric_limits<double>::quiet_NaN();
+  bool reached_end = false;  // v fell below end_volume, or dp rose to end_dp
+  std::string stop_reason;   // why it stopped, when it did not reach the end
+  // The nodes' positions at the last point (at end_dp when that ended it).
+  Points state;
+  // Whether that state is stable under pressure control: its stiffness at fixed dp positive
+  // definite.
+  bool stable = false;
+};
+
+// Throws std::invalid_argument for unusable options.
+StaticBranch trace_static_branch(const Body& body, const BranchOptions& options);
+
+}  // namespace snapjump::axi
