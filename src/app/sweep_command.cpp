@@ -90,6 +90,7 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
     if (root) {
       try {
         if (!table_only_) {
+          sweep::check_folder(spec);  // before the lock: a refused folder gets no lock file
           fs::create_directories(spec.output);
           lock.emplace(spec.output, "sweep.lock", "the sweep folder");
           sweep::prepare_folder(spec);
@@ -138,7 +139,10 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
 
   try {
     if (!table_only_) {
-      // One sweep per folder: a second one on the same folder is refused.
+      // One sweep per folder: a second one on the same folder is refused. The folder is checked
+      // first, so a folder that is refused (one holding something else, "/", "..") gets no lock
+      // file; prepare_folder checks it again under the lock.
+      sweep::check_folder(spec);
       fs::create_directories(spec.output);
       const io::FolderLock lock(spec.output, "sweep.lock", "the sweep folder");
       sweep::prepare_folder(spec);
@@ -164,6 +168,9 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
                table.string());
     return kExitOk;
   } catch (const sweep::SweepError& e) {
+    fmt::print(err, "error: {}\n", e.what());
+    return kExitBadInput;
+  } catch (const io::LockFileRefused& e) {
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {

@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <fstream>
 #include <map>
 #include <set>
 #include <unordered_map>
 
 #include "mesh/gmsh_model.hpp"
+#include "mesh/msh_check.hpp"
 
 namespace snapjump::mesh {
 namespace {
@@ -106,19 +106,10 @@ Mesh read_msh_unguarded(const std::filesystem::path& path) {
     throw MeshError(fmt::format("{}: no such mesh file", path.string()));
   }
   // gmsh::open reads any file it does not recognise as a .geo script: a script can run commands
-  // (SystemCall) and a malformed one crashed gmsh's parser (make fuzz, a division by zero). A
-  // .msh file starts with $MeshFormat; nothing else reaches gmsh.
-  {
-    std::ifstream in(path, std::ios::binary);
-    std::string head(11, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
-    if (!in || head != "$MeshFormat") {
-      throw MeshError(fmt::format(
-          "{}: not a gmsh .msh file (it must start with $MeshFormat; snapjump does not read "
-          ".geo scripts)",
-          path.string()));
-    }
-  }
+  // (SystemCall) and a malformed one crashed gmsh's parser (a division by zero). And gmsh's .msh
+  // parser trusts the file: a damaged one can crash it. Only a file that passes the structure
+  // check (an MSH 4.1 file that starts with $MeshFormat, msh_check.hpp) reaches gmsh.
+  check_msh_file(path);
   GmshSession session;
   // gmsh keeps its last error across sessions: only a new one is this file's.
   std::string before, error;
@@ -279,8 +270,8 @@ Mesh read_msh_unguarded(const std::filesystem::path& path) {
 
 Mesh read_msh(const std::filesystem::path& path) {
   // gmsh reports some errors by throwing a std::string or an int, which nothing else here
-  // expects: every error leaves as a MeshError naming the file. (A file that crashes gmsh itself
-  // cannot be guarded in this process.)
+  // expects: every error leaves as a MeshError naming the file. The damage known to crash gmsh
+  // itself is refused by the structure check before gmsh sees the file.
   try {
     return read_msh_unguarded(path);
   } catch (const MeshError&) {

@@ -373,8 +373,8 @@ RunState state_of(const RunPaths& p) {
   return fs::exists(p.dir / "checkpoint.bin") ? RunState::Resumable : RunState::Interrupted;
 }
 
-// An empty folder, or one that holds only the sweep's lock file (taken before the folder is
-// prepared).
+// An empty folder, or one that holds only a sweep's lock file (the lock is taken after the
+// folder is checked and before it is prepared, so a sweep stopped in between leaves it alone).
 static bool only_the_lock(const fs::path& dir) {
   for (const auto& e : fs::directory_iterator(dir)) {
     if (e.path().filename() != "sweep.lock") return false;
@@ -389,7 +389,8 @@ bool resumes_after_kill(const RunPaths& p) {
   return !io::run_status::failed(summary->value("status", std::string()));
 }
 
-void prepare_folder(const Spec& spec) {
+// plan.csv: the runs' names and varied settings, one row per run.
+static std::string plan_of(const Spec& spec) {
   std::string plan = "run";
   for (const auto& k : spec.varied_keys) plan += fmt::format(",{}", k);
   plan += "\n";
@@ -398,9 +399,13 @@ void prepare_folder(const Spec& spec) {
     for (const auto& s : r.settings) plan += fmt::format(",{}", csv_field(s.text));
     plan += "\n";
   }
+  return plan;
+}
+
+void check_folder(const Spec& spec) {
   const fs::path plan_file = spec.output / "plan.csv";
   if (fs::exists(plan_file)) {
-    if (read_text(plan_file) != plan) {
+    if (read_text(plan_file) != plan_of(spec)) {
       throw SweepError(fmt::format(
           "{} holds a different sweep (its plan.csv differs); give another output folder or "
           "remove that one",
@@ -410,6 +415,12 @@ void prepare_folder(const Spec& spec) {
     throw SweepError(
         fmt::format("{} exists and is not a sweep folder (no plan.csv)", spec.output.string()));
   }
+}
+
+void prepare_folder(const Spec& spec) {
+  check_folder(spec);
+  const std::string plan = plan_of(spec);
+  const fs::path plan_file = spec.output / "plan.csv";
   fs::create_directories(spec.output / "cases");
   fs::create_directories(spec.output / "runs");
   fs::create_directories(spec.output / "logs");

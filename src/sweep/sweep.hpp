@@ -91,8 +91,13 @@ RunState state_of(const RunPaths& p);
 // there instead of starting it again.
 bool resumes_after_kill(const RunPaths& p);
 
-// Prepares the sweep folder: plan.csv (refusing a folder that holds a different sweep) and
-// one case file per run. Safe to call again on the same sweep.
+// Refuses, with a SweepError, an output folder that holds a different sweep (its plan.csv
+// differs) or something else than a sweep (no plan.csv, and more than a sweep.lock or nothing).
+// Writes nothing: it comes before the sweep takes its lock in the folder.
+void check_folder(const Spec& spec);
+
+// Prepares the sweep folder: plan.csv (after check_folder, again) and one case file per run.
+// Safe to call again on the same sweep.
 void prepare_folder(const Spec& spec);
 
 // One row per run, in run order: the case, the theory's bounds and the measured quantities

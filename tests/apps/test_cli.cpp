@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -523,6 +525,130 @@ TEST(Cli, AnInputErrorOfEachKindIsStatusTwo) {
   std::ofstream(dir / "snapjump_cli_kind.csv") << "t,F\n0,x\n";
   EXPECT_EQ(run({"analyze", (dir / "snapjump_cli_kind.csv").string()}).code, kExitBadInput);
   EXPECT_EQ(run({"mesh", "--h", "0 mm", "--output", (dir / "k.msh").string()}).code, kExitBadInput);
+}
+
+}  // namespace
+}  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string text_of(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A folder of this test process's own (another process may run the same tests at once).
+fs::path own_folder(const std::string& name) {
+  const auto dir = fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// A sweep run in-process starts its runs as this test program: should a folder check fail to
+// stop one, its runs run no tests (instead of the whole suite, as "run ..." arguments would).
+class NoTestsInChildren {
+ public:
+  NoTestsInChildren() {
+    if (const char* f = std::getenv("GTEST_FILTER")) saved_ = f;
+    ::setenv("GTEST_FILTER", "-*", 1);
+  }
+  ~NoTestsInChildren() {
+    if (saved_.empty()) {
+      ::unsetenv("GTEST_FILTER");
+    } else {
+      ::setenv("GTEST_FILTER", saved_.c_str(), 1);
+    }
+  }
+  NoTestsInChildren(const NoTestsInChildren&) = delete;
+  NoTestsInChildren& operator=(const NoTestsInChildren&) = delete;
+
+ private:
+  std::string saved_;
+};
+
+// A lock file of a sweep or a run that is a symbolic link is refused, never followed: the file
+// it points to keeps its bytes, for a sweep as for a resumed run.
+TEST(Cli, ALockFileThatIsALinkIsRefusedAndItsTargetUntouched) {
+  const NoTestsInChildren guard;
+  const auto base = own_folder("snapjump_cli_lock_links");
+  fs::create_directories(base / "ud3");
+  std::ofstream(base / "victim.txt") << "precious\n";
+  fs::create_symlink("../victim.txt", base / "ud3" / "sweep.lock");
+  std::ofstream(base / "s.toml") << "output = \"ud3\"\n[vary]\nfriction.mu = [0.1, 0.2]\n";
+  const auto sweep = run({"sweep", (base / "s.toml").string()});
+  EXPECT_EQ(sweep.code, kExitBadInput) << sweep.err;
+  EXPECT_NE(sweep.err.find((base / "ud3" / "sweep.lock").string() + " is a symbolic link"),
+            std::string::npos)
+      << sweep.err;
+  EXPECT_FALSE(fs::exists(base / "ud3" / "plan.csv"));
+  EXPECT_EQ(text_of(base / "victim.txt"), "precious\n");
+
+  const auto rl = base / "rl";
+  fs::create_directories(rl);
+  std::ofstream(rl / "case.toml") << config::to_toml(config::default_case());
+  fs::create_symlink("../victim.txt", rl / "run.lock");
+  const auto resume = run({"run", "--resume", rl.string()});
+  EXPECT_EQ(resume.code, kExitBadInput) << resume.err;
+  EXPECT_NE(resume.err.find((rl / "run.lock").string() + " is a symbolic link"), std::string::npos)
+      << resume.err;
+  EXPECT_FALSE(fs::exists(rl / "summary.json"));
+  EXPECT_EQ(text_of(base / "victim.txt"), "precious\n");
+  fs::remove_all(base);
+}
+
+// A file of the user's that happens to be called sweep.lock keeps its bytes: in a folder the
+// sweep refuses, and when a lock takes it as it is. A lock's own file, left by a killed process,
+// is taken over and says who holds it now.
+TEST(Cli, ALockNeverRewritesAFileThatIsNotALocks) {
+  const NoTestsInChildren guard;
+  const auto base = own_folder("snapjump_cli_lock_own_file");
+  fs::create_directories(base / "own");
+  std::ofstream(base / "own" / "sweep.lock") << "my notes\n";
+  std::ofstream(base / "own" / "data.csv") << "1,2\n";
+  std::ofstream(base / "s.toml") << "output = \"own\"\n[vary]\nfriction.mu = [0.1, 0.2]\n";
+  const auto r = run({"sweep", (base / "s.toml").string()});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find("not a sweep folder"), std::string::npos) << r.err;
+  EXPECT_EQ(text_of(base / "own" / "sweep.lock"), "my notes\n");
+  {
+    const io::FolderLock held(base / "own", "sweep.lock", "the sweep folder");
+    EXPECT_EQ(text_of(base / "own" / "sweep.lock"), "my notes\n");
+    EXPECT_THROW(io::FolderLock(base / "own", "sweep.lock", "the sweep folder"), io::FolderBusy);
+  }
+  EXPECT_EQ(text_of(base / "own" / "sweep.lock"), "my notes\n");
+  // A stale lock (a process id, its process gone) is taken over.
+  std::ofstream(base / "own" / "run.lock") << "999999999\n";
+  const io::FolderLock stale(base / "own", "run.lock", "the run folder");
+  EXPECT_EQ(text_of(base / "own" / "run.lock"), std::to_string(::getpid()) + "\n");
+  fs::remove_all(base);
+}
+
+// A sweep refused for its folder ("/", "..": folders that hold other things) leaves no lock
+// file there.
+TEST(Cli, ASweepRefusedForItsFolderLeavesNoLockFile) {
+  const NoTestsInChildren guard;
+  const auto base = own_folder("snapjump_cli_lock_refused");
+  fs::create_directories(base / "a" / "b");
+  std::ofstream(base / "a" / "b" / "s.toml")
+      << "output = \"..\"\n[vary]\nfriction.mu = [0.1, 0.2]\n";
+  const auto up = run({"sweep", (base / "a" / "b" / "s.toml").string()});
+  EXPECT_EQ(up.code, kExitBadInput);
+  EXPECT_NE(up.err.find("not a sweep folder"), std::string::npos) << up.err;
+  EXPECT_FALSE(fs::exists(base / "a" / "sweep.lock"));
+  const bool had_one = fs::exists(fs::symlink_status("/sweep.lock"));
+  const auto root = run({"sweep", (base / "a" / "b" / "s.toml").string(), "--output", "/"});
+  EXPECT_EQ(root.code, kExitBadInput);
+  EXPECT_NE(root.err.find("not a sweep folder"), std::string::npos) << root.err;
+  if (!had_one) {
+    EXPECT_FALSE(fs::exists(fs::symlink_status("/sweep.lock")));
+  }
+  fs::remove_all(base);
 }
 
 }  // namespace

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -14,9 +16,12 @@
 #include <numbers>
 #include <set>
 #include <sstream>
+#include <string>
 #include <vector>
 
 #include "mesh/cap_mesher.hpp"
+#include "mesh/gmsh_session.hpp"
+#include "mesh/msh_check.hpp"
 #include "mesh/msh_reader.hpp"
 
 namespace snapjump::mesh {
@@ -374,6 +379,217 @@ TEST(Msh, MissingGroupsAreNamed) {
 
 TEST(Msh, MissingFile) {
   expect_mesh_error([] { (void)read_msh("/nonexistent/x.msh"); }, "no such mesh file");
+}
+
+}  // namespace
+}  // namespace snapjump::mesh
+
+namespace snapjump::mesh {
+namespace {
+
+// Damaged .msh files are refused by the structure check before gmsh reads them: files that
+// crashed gmsh (an element on a node tag gmsh cannot look up, a negative tag), a node count no
+// file of that length can hold (gmsh reserved it and went on), cut files. The message names the
+// file, the line and the section.
+
+std::string text_of(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The cap as write_msh writes it (MSH 4.1, ASCII).
+const std::string& cap_msh() {
+  static const std::string text = [] {
+    const auto path = temp_file("check-cap.msh");
+    write_msh(cap(), path);
+    return text_of(path);
+  }();
+  return text;
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::stringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::string joined(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
+  return s;
+}
+
+std::vector<std::string> words(const std::string& line) {
+  std::stringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// The index (from 0) of the line of the first 10-node tetrahedron.
+std::size_t first_tet_line(const std::vector<std::string>& lines) {
+  const auto begin = std::find(lines.begin(), lines.end(), "$Elements") - lines.begin();
+  for (auto k = static_cast<std::size_t>(begin) + 2; k < lines.size(); ++k) {
+    const auto w = words(lines[k]);
+    if (w.size() == 4 && w[2] == "11") return k + 1;
+  }
+  ADD_FAILURE() << "no tetrahedra";
+  return 0;
+}
+
+// The cap with its first tetrahedron's first node tag replaced.
+std::string with_first_tet_node(const std::string& tag) {
+  auto lines = lines_of(cap_msh());
+  const auto k = first_tet_line(lines);
+  auto w = words(lines[k]);
+  w[1] = tag;
+  lines[k].clear();
+  for (const auto& x : w) lines[k] += x + " ";
+  return joined(lines);
+}
+
+// The cap with one whole line replaced.
+std::string with_line(const std::string& old_line, const std::string& new_line) {
+  auto lines = lines_of(cap_msh());
+  const auto it = std::find(lines.begin(), lines.end(), old_line);
+  EXPECT_NE(it, lines.end()) << old_line;
+  if (it != lines.end()) *it = new_line;
+  return joined(lines);
+}
+
+void expect_refused(const std::string& bytes, const std::vector<std::string>& fragments) {
+  const auto path = temp_file("check-damaged.msh");
+  std::ofstream(path, std::ios::binary) << bytes;
+  try {
+    (void)read_msh(path);
+    ADD_FAILURE() << "read a damaged file; expected: " << fragments.front();
+  } catch (const MeshError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+    for (const auto& f : fragments) EXPECT_NE(what.find(f), std::string::npos) << f << ": " << what;
+    EXPECT_LT(what.size(), 400u) << what;
+  }
+}
+
+TEST(MshCheck, AnElementOnANodeTheFileDoesNotHaveIsRefused) {
+  const auto line = fmt::format("line {}", first_tet_line(lines_of(cap_msh())) + 1);
+  expect_refused(with_first_tet_node("3000000000"), {line, "$Elements", "node 3000000000"});
+  expect_refused(with_first_tet_node("999999"), {line, "$Elements", "node 999999"});
+}
+
+TEST(MshCheck, ANegativeOrZeroTagIsRefused) {
+  const auto line = fmt::format("line {}", first_tet_line(lines_of(cap_msh())) + 1);
+  expect_refused(with_first_tet_node("-5"), {line, "$Elements", "\"-5\""});
+  expect_refused(with_first_tet_node("0"), {line, "$Elements", "\"0\""});
+  // A node's own tag.
+  auto lines = lines_of(cap_msh());
+  const auto nodes = std::find(lines.begin(), lines.end(), "$Nodes") - lines.begin();
+  const auto first = std::find(lines.begin() + nodes, lines.end(), "1") - lines.begin();
+  lines[first] = "-1";
+  expect_refused(joined(lines), {fmt::format("line {}", first + 1), "$Nodes", "\"-1\""});
+  lines[first] = "2";
+  expect_refused(joined(lines), {"$Nodes", "node tag 2", "twice"});
+}
+
+TEST(MshCheck, ACountTheFileCannotHoldIsRefusedAtOnce) {
+  const auto lines = lines_of(cap_msh());
+  const auto nodes = std::find(lines.begin(), lines.end(), "$Nodes") - lines.begin();
+  const auto header = words(lines[nodes + 1]);
+  ASSERT_EQ(header.size(), 4u);
+  const auto start = std::chrono::steady_clock::now();
+  expect_refused(with_line(lines[nodes + 1],
+                           fmt::format("{} 300000000 {} {}", header[0], header[2], header[3])),
+                 {"$Nodes", "300000000 nodes", "bytes"});
+  const auto elements = std::find(lines.begin(), lines.end(), "$Elements") - lines.begin();
+  const auto eh = words(lines[elements + 1]);
+  expect_refused(
+      with_line(lines[elements + 1], fmt::format("{} 300000000 {} {}", eh[0], eh[2], eh[3])),
+      {"$Elements", "300000000 elements", "bytes"});
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+TEST(MshCheck, ATruncatedFileIsRefused) {
+  const auto& good = cap_msh();
+  for (const std::size_t cut : {good.size() / 3, 2 * good.size() / 3, good.find("$Elements") + 10,
+                                good.find("$EndElements")}) {
+    expect_refused(good.substr(0, cut), {"ends"});
+  }
+}
+
+TEST(MshCheck, OtherDamageIsNamed) {
+  expect_refused(with_line("4.1 0 8", "2.2 0 8"), {"line 2", "$MeshFormat", "4.1"});
+  expect_refused(with_line("$EndNodes", "$EndNodez"), {"$Nodes", "$EndNodes", "$EndNodez"});
+  expect_refused(with_line("2 2 \"inner\"", "7 2 \"inner\""), {"$PhysicalNames", "dimension"});
+  auto lines = lines_of(cap_msh());
+  const auto k = first_tet_line(lines) - 1;
+  auto w = words(lines[k]);
+  lines[k] = fmt::format("{} {} 99 {}", w[0], w[1], w[3]);
+  expect_refused(joined(lines), {fmt::format("line {}", k + 1), "element type 99"});
+  expect_refused(cap_msh() + "$Periodic\n0\n$EndPeriodic\n", {"$Periodic"});
+}
+
+// A mesh gmsh wrote in binary, for the binary paths of the check.
+std::string binary_of(const std::filesystem::path& ascii) {
+  const auto path = temp_file("check-binary.msh");
+  {
+    GmshSession session;
+    gmsh::open(ascii.string());
+    gmsh::option::setNumber("Mesh.Binary", 1);
+    gmsh::write(path.string());
+  }
+  return text_of(path);
+}
+
+void expect_same_mesh(const Mesh& a, const Mesh& b) {
+  EXPECT_EQ(a.nodes.x, b.nodes.x);
+  EXPECT_EQ(a.nodes.y, b.nodes.y);
+  EXPECT_EQ(a.nodes.z, b.nodes.z);
+  EXPECT_EQ(a.tets, b.tets);
+  EXPECT_EQ(a.inner_faces, b.inner_faces);
+  EXPECT_EQ(a.clamped, b.clamped);
+  EXPECT_EQ(a.outer, b.outer);
+  EXPECT_EQ(a.apex, b.apex);
+}
+
+TEST(MshCheck, AValidMeshIsReadTheSameInAsciiAndInBinary) {
+  const auto ascii = temp_file("check-valid.msh");
+  std::ofstream(ascii, std::ios::binary) << cap_msh();
+  const Mesh from_ascii = read_msh(ascii);
+  EXPECT_EQ(from_ascii.tets.size(), cap().tets.size());
+  const auto binary = temp_file("check-valid-binary.msh");
+  const auto bytes = binary_of(ascii);
+  ASSERT_NE(bytes.find("4.1 1 8"), std::string::npos);
+  std::ofstream(binary, std::ios::binary) << bytes;
+  expect_same_mesh(read_msh(binary), from_ascii);
+  // Damage in the binary form is refused too: a cut, a node tag no node has.
+  expect_refused(bytes.substr(0, bytes.size() / 2), {"ends"});
+  const auto elements = bytes.find("$Elements\n") + 10;
+  auto bad = bytes;
+  const std::size_t huge = 3000000000;
+  // The first block's first element: 4 size_t of header, 3 ints and a size_t of block header,
+  // then the element's tag and its first node.
+  std::memcpy(bad.data() + elements + 4 * 8 + 3 * 4 + 8 + 8, &huge, sizeof huge);
+  expect_refused(bad, {"$Elements", "node 3000000000"});
+}
+
+// The check's table of element types is gmsh's own.
+TEST(MshCheck, ItsElementTypesAreGmshs) {
+  GmshSession session;
+  for (int type = 1; type <= 31; ++type) {
+    std::string name;
+    int dim = 0, order = 0, nodes = 0, primary = 0;
+    std::vector<double> coords;
+    gmsh::model::mesh::getElementProperties(type, name, dim, order, nodes, coords, primary);
+    const auto t = msh_element_type(type);
+    ASSERT_TRUE(t.has_value()) << type;
+    EXPECT_EQ(t->dim, dim) << name;
+    EXPECT_EQ(t->nodes, nodes) << name;
+  }
+  EXPECT_FALSE(msh_element_type(0).has_value());
+  EXPECT_FALSE(msh_element_type(32).has_value());
 }
 
 }  // namespace
