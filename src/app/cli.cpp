@@ -27,6 +27,7 @@
 #include "measure/time_series.hpp"
 #include "mesh/cap_mesher.hpp"
 #include "mesh/msh_reader.hpp"
+#include "popper/reverse_snap.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::app {
@@ -69,7 +70,63 @@ struct CaseOptions {
   }
 };
 
-int predict(const CaseOptions& opts, const std::string& format, std::ostream& out) {
+// The reverse snap from the axisymmetric branch, or why it is not known; never fails predict.
+std::optional<popper::ReverseSnap> reverse_snap_of(const config::Case& c, std::string& why) {
+  try {
+    return popper::reverse_snap(c);
+  } catch (const std::exception& e) {
+    why = e.what();
+    return std::nullopt;
+  }
+}
+
+void write_reverse_snap(std::ostream& out, const std::optional<popper::ReverseSnap>& r,
+                        const std::string& why, double pc, double delta_p_j) {
+  if (!r) {
+    fmt::print(out, "\nreverse snap: not computed ({})\n", why);
+    return;
+  }
+  fmt::print(out, "\nreverse snap ({}; {:.1f} s)\n", r->model, r->wall_time);
+  const auto row = [&](const char* label, double p) {
+    if (std::isfinite(p)) {
+      fmt::print(out, "  {:<42} {:>11.4g}              kPa  ({:.3f} Zoelly's p_c)\n", label,
+                 p / 1e3, p / pc);
+    } else {
+      fmt::print(out, "  {:<42} {:>11}  not reached\n", label, "-");
+    }
+  };
+  row("p_c    buckling suction (branch maximum)", r->p_c);
+  row("p_-    lowest suction of a buckled state", r->p_minus);
+  row("p_hold lowest suction holding it inverted", r->p_hold);
+  if (!r->note.empty()) fmt::print(out, "  the branch stopped {}\n", r->note);
+  if (std::isfinite(r->p_minus)) {
+    fmt::print(out, "  {}\n",
+               r->p_minus > 0.0
+                   ? "monostable: without suction the inverted shell snaps back (p_- > 0)"
+                   : "bistable: the inverted shell stays inverted without suction (p_- < 0)");
+  }
+  if (std::isfinite(r->p_hold)) {
+    fmt::print(out, "  delta_p_j = {:.4g} kPa {} the fully inverted shell (p_hold = {:.4g} kPa)\n",
+               delta_p_j / 1e3, delta_p_j >= r->p_hold ? "holds" : "does not hold",
+               r->p_hold / 1e3);
+  }
+}
+
+nlohmann::json reverse_snap_json(const std::optional<popper::ReverseSnap>& r,
+                                 const std::string& why) {
+  using nlohmann::json;
+  if (!r) return {{"computed", false}, {"why", why}};
+  const auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
+  return {{"computed", true},
+          {"model", r->model},
+          {"p_c", num(r->p_c)},
+          {"p_minus", num(r->p_minus)},
+          {"p_hold", num(r->p_hold)},
+          {"note", r->note},
+          {"monostable", std::isfinite(r->p_minus) ? json(r->p_minus > 0.0) : json(nullptr)}};
+}
+
+int predict(const CaseOptions& opts, const std::string& format, bool branch, std::ostream& out) {
   const auto c = opts.load();
   const auto p = theory::predict(c, theory::contact_constants());
   // A valid case can still lie where the closed forms overflow or vanish (h/R of 1e-309):
@@ -83,12 +140,26 @@ int predict(const CaseOptions& opts, const std::string& format, std::ostream& ou
           c.material.E * c.shell.h * c.shell.h / c.popper.net_weight));
     }
   }
+  std::string why = "--no-branch";
+  const auto r = branch ? reverse_snap_of(c, why) : std::nullopt;
   if (format == "json") {
-    io::write_json(out, c, p);
+    auto doc = io::to_json(c, p);
+    doc["reverse_snap"] = reverse_snap_json(r, why);
+    out << doc.dump(2) << '\n';
   } else if (format == "csv") {
     io::write_csv(out, p);
+    if (r) {
+      for (const auto& [key, v] : {std::pair{"reverse_p_c", r->p_c},
+                                   {"reverse_p_minus", r->p_minus},
+                                   {"reverse_p_hold", r->p_hold}}) {
+        if (std::isfinite(v)) fmt::print(out, "{},{:.10g},{:.10g},Pa\n", key, v, v);
+      }
+    }
   } else {
     io::write_table(out, c, p);
+    write_reverse_snap(out, r, why,
+                       theory::zoelly_pressure(c.material.E, c.shell.h, c.shell.R, c.material.nu),
+                       theory::jump_pressure(c));
   }
   return kExitOk;
 }
@@ -513,12 +584,17 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   auto* predict_cmd = app.add_subcommand(
       "predict",
       "Closed-form theory for one popper: r*, e*, F*, t*, H_l, H_s, H with their bounds, and "
-      "the predicted outcome (Jump / Snap / No snap).");
+      "the predicted outcome (Jump / Snap / No snap); then the buckling and reverse-snap "
+      "suctions from the axisymmetric model's quasi-static pressure-volume branch (a few "
+      "seconds).");
   CaseOptions predict_opts;
   predict_opts.add_to(*predict_cmd);
   std::string format = "table";
   predict_cmd->add_option("--format", format, "output: table (for people), json or csv")
       ->check(CLI::IsMember({"table", "json", "csv"}));
+  bool no_branch = false;
+  predict_cmd->add_flag("--no-branch", no_branch,
+                        "skip the pressure-volume branch (the closed forms only, at once)");
   predict_cmd->footer(
       "Values take units: --R 30mm --h 2mm --E 1.2MPa --net-weight 0.48N --phi 80deg.\n"
       "A bare number is SI (metres, pascals, radians...).");
@@ -640,7 +716,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   }
 
   try {
-    if (predict_cmd->parsed()) return predict(predict_opts, format, out);
+    if (predict_cmd->parsed()) return predict(predict_opts, format, !no_branch, out);
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
     if (analyze->parsed()) return analyze_cmd(analyze_opts, out, err);
     if (mesh_cmd->parsed()) {

@@ -364,14 +364,17 @@ bool Run::prepare_and_release() {
     preparation_progress(phase, t, fraction);
   });
   fmt::print(out_, "  prepared    {}\n", prep.message);
-  summary_["preparation"] = {
-      {"inverted", prep.inverted},
-      {"held", prep.held},
-      {"buckling_pressure",
-       prep.buckling_pressure ? nlohmann::json(*prep.buckling_pressure) : nlohmann::json(nullptr)},
-      {"delta_p_j", pop_.delta_p_j()},
-      {"plate_force", prep.plate_force},
-      {"message", prep.message}};
+  const auto or_null = [](const std::optional<double>& p) {
+    return p ? nlohmann::json(*p) : nlohmann::json(nullptr);
+  };
+  summary_["preparation"] = {{"inverted", prep.inverted},
+                             {"held", prep.held},
+                             {"buckling_pressure", or_null(prep.buckling_pressure)},
+                             {"reverse_pressure", or_null(prep.reverse_pressure)},
+                             {"hold_pressure", or_null(prep.hold_pressure)},
+                             {"delta_p_j", pop_.delta_p_j()},
+                             {"plate_force", prep.plate_force},
+                             {"message", prep.message}};
   if (!prep.held) {
     summary_["status"] =
         prep.inverted ? io::run_status::kSnappedBack : io::run_status::kDidNotInvert;

@@ -407,6 +407,7 @@ StaticBranch Tracer::run() {
       } catch (const fem::FoldedElement& e) {
         b.stop_reason =
             fmt::format("at V / V0 = {:.4g}, dp = {:.6g} Pa: {}", s.v, s.q * o_.p_ref, e.what());
+        b.fold = e;
         break;
       }
     }

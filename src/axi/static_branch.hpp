@@ -31,6 +31,7 @@
 
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,8 @@ struct StaticBranch {
   double v_hold = std::numeric_limits<double>::quiet_NaN();
   bool reached_end = false;  // v fell below end_volume, or dp rose to end_dp
   std::string stop_reason;   // why it stopped, when it did not reach the end
+  // The fold that stopped it, if one did (at the last point).
+  std::optional<fem::FoldedElement> fold;
   // The nodes' positions at the last point (at end_dp when that ended it).
   Points state;
   // Whether that state is stable under pressure control: its stiffness at fixed dp positive

@@ -114,6 +114,14 @@ FoldedElement::FoldedElement(int e, double det_f_, double px, double py, double 
       y(py),
       z(pz) {}
 
+FoldedElement::FoldedElement(const std::string& context, const FoldedElement& fold)
+    : std::runtime_error(fmt::format("{}: {}", context, fold.what())),
+      element(fold.element),
+      det_f(fold.det_f),
+      x(fold.x),
+      y(fold.y),
+      z(fold.z) {}
+
 namespace {
 
 // The items (elements, faces) at each of nn nodes: node a's are list[start[a] .. start[a + 1]),

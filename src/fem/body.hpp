@@ -46,6 +46,8 @@ class FoldedElement : public std::runtime_error {
   // det_f: the smallest det F found (or the bound where none was found at or below 0); (x, y, z)
   // the current position of that point; what: how it was found.
   FoldedElement(int element, double det_f, double x, double y, double z, const std::string& what);
+  // The same fold, its message led by where it was met (context: what the model was doing).
+  FoldedElement(const std::string& context, const FoldedElement& fold);
   int element;
   double det_f;
   double x, y, z;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 
+#include "axi/static_branch.hpp"
 #include "io/vtu.hpp"
 #include "popper/state_io.hpp"
 
@@ -68,6 +69,26 @@ void AxiShell::start_held(double damping) {
   dynamics_.hold_rim();
   dynamics_.set_gravity(0.0);
   dynamics_.set_damping(kAxiHeldDampingFactor * damping);
+}
+
+std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(double dp,
+                                                                               double p_ref) {
+  axi::BranchOptions o;
+  o.p_ref = p_ref;
+  o.end_dp = dp;
+  o.end_volume = -std::numeric_limits<double>::max();  // only end_dp ends it
+  const auto b = axi::trace_static_branch(body_, o);
+  dynamics_.mutable_positions() = b.state;
+  dynamics_.zero_velocities();
+  if (b.fold) {
+    const auto& last = b.points.back();
+    throw fem::FoldedElement(
+        fmt::format("on the quasi-static buckling branch at V / V0 = {:.4f}, delta_p = {:.0f} Pa "
+                    "({:.3f} p_c), on the way to {:.0f} Pa",
+                    last.volume / b.V0, last.dp, last.dp / p_ref, dp),
+        *b.fold);
+  }
+  return QuasiStaticBuckle{b.reached_end, b.stable, b.p_c, b.p_minus, b.p_hold, b.stop_reason};
 }
 
 void AxiShell::start_on_plate(core::RigidBody& container, double mu, double damping) {

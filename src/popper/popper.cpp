@@ -242,13 +242,20 @@ Preparation Popper::prepare(const Progress& progress) {
 
 // Phase 1, container held in the air: raise the suction past the buckling pressure until the
 // shell inverts. The syringe holds the pressure difference: the gas is held at it before each
-// step.
+// step. Where the model follows the pressure-volume branch instead (settings.quasi_static), the
+// shell is put at rest in that equilibrium.
 bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
   const auto& st = settings_;
   auto& m = *model_;
   const double p_buckle = st.buckle_factor * pc;
-  SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
   m.start_held(numerics_.prep_damping);
+  if (st.quasi_static) {
+    gas_.hold(p_buckle);
+    if (const auto qs = m.buckle_quasi_statically(p_buckle, pc)) {
+      return buckled_quasi_statically(prep, *qs, pc);
+    }
+  }
+  SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
   while (m.time() < st.ramp + st.max_wait) {
     const double p = buckling_suction(m.time(), pc);
     gas_.hold(p);
@@ -272,6 +279,31 @@ bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
   prep.message = fmt::format("the shell did not invert under {:.0f} Pa ({:.1f} p_c)", p_buckle,
                              st.buckle_factor);
   return false;
+}
+
+bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::QuasiStaticBuckle& qs,
+                                      double pc) {
+  const double p_buckle = settings_.buckle_factor * pc;
+  const auto known = [](double p) { return std::isfinite(p) ? std::optional(p) : std::nullopt; };
+  prep.buckling_pressure = known(qs.p_c);
+  prep.reverse_pressure = known(qs.p_minus);
+  prep.hold_pressure = known(qs.p_hold);
+  if (!qs.reached || !qs.stable || !inverted()) {
+    prep.message = fmt::format(
+        "the pressure-volume branch did not bring the shell to a stable inverted state under "
+        "{:.0f} Pa ({:.2f} p_c){}{}",
+        p_buckle, settings_.buckle_factor, qs.note.empty() ? "" : ": ", qs.note);
+    return false;
+  }
+  model_->check_folds();
+  prep.inverted = true;
+  prep.message = fmt::format(
+      "inverted under {:.0f} Pa ({:.2f} p_c) along the quasi-static pressure-volume branch: it "
+      "buckles at {:.0f} Pa ({:.3f} p_c), holds fully inverted down to {:.0f} Pa ({:.3f} p_c) "
+      "and has no buckled state below {:.0f} Pa ({:.3f} p_c)",
+      p_buckle, settings_.buckle_factor, qs.p_c, qs.p_c / pc, qs.p_hold, qs.p_hold / pc, qs.p_minus,
+      qs.p_minus / pc);
+  return true;
 }
 
 // Phase 2, still in the air: bring the suction to delta_p_j and let the shell settle.

@@ -85,6 +85,10 @@ struct Preparation {
   // the rule did not see one (no sample shrank the cavity onset_factor times faster than the
   // reference window's mean).
   std::optional<double> buckling_pressure;
+  // Where phase 1 follows the pressure-volume branch (ShellModel::buckle_quasi_statically): the
+  // buckling pressure is the branch's maximum, and these its lowest suction after it and the
+  // lowest suction that holds the fully inverted shell [Pa].
+  std::optional<double> reverse_pressure, hold_pressure;
   double plate_force = 0.0;  // after grounding, mean plate force over the settling's end [N]
   std::string message;       // what happened, in words
 };
@@ -97,6 +101,10 @@ struct PreparationSettings {
   // held at most max_wait for the shell to invert. Inverted: the apex above the outer rim and the
   // shell's kinetic energy below settled_energy per kg of shell.
   double buckle_factor = 1.4;
+  // The suction's equilibrium found by continuation where the model can (the axisymmetric
+  // model: the phase is quasi-static in fact, with no dynamic snap to crease the fold), instead
+  // of the ramp in time below.
+  bool quasi_static = true;
   double ramp = 0.02;     // [s]
   double max_wait = 0.1;  // [s]
   // Optionally the ramp has a fast first leg: the suction reaches fast_to p_c in fast_ramp, then
@@ -218,6 +226,8 @@ class Popper {
   // cannot go on to the next. buckle() puts the words of its outcome in prep.message on success
   // too, and prepare() adds those of the later phases.
   bool buckle(Preparation& prep, const Progress& progress, double pc);
+  bool buckled_quasi_statically(Preparation& prep, const ShellModel::QuasiStaticBuckle& qs,
+                                double pc);
   bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc);
   void ground(Preparation& prep, const Progress& progress);
   // The protocol's one test of "inverted": the apex above the outer rim.

@@ -13,6 +13,7 @@
 #include <iosfwd>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "config/case.hpp"
@@ -44,6 +45,24 @@ class ShellModel {
   // Phases 1-2: the rim held in the air, mass-proportional damping c [1/s], no plate. The
   // pressure difference (outside minus inside) comes from the function given at construction.
   virtual void start_held(double damping) = 0;
+  // Phase 1 done quasi-statically, where the model has the solver for it (a model without one
+  // returns nothing, and the protocol ramps the suction in time): the rim held, the shell put at
+  // rest in the equilibrium of suction dp on the inverted part of its pressure-volume branch,
+  // followed from the natural state by continuation. p_ref: the pressure scale (Zoelly's p_c).
+  // Throws fem::FoldedElement when the branch folds an element before it gets there.
+  struct QuasiStaticBuckle {
+    bool reached = false;  // the equilibrium at dp was found
+    bool stable = false;   // and is stable under pressure control
+    // The branch's buckling maximum, its lowest suction after it (below which no buckled state
+    // is left) and the lowest suction that holds the fully inverted shell [Pa] (NaN: not found).
+    double p_c = 0.0, p_minus = 0.0, p_hold = 0.0;
+    std::string note;  // why it stopped, when it did not reach dp
+  };
+  virtual std::optional<QuasiStaticBuckle> buckle_quasi_statically(double dp, double p_ref) {
+    (void)dp;
+    (void)p_ref;
+    return std::nullopt;
+  }
   // Phase 3 on: the shell lowered onto the plate (its lowest point where the plate meets it),
   // its rim glued to the container from now on, the plate acting with Coulomb friction mu,
   // gravity on. The container's z is 0 there.
