@@ -361,6 +361,97 @@ std::optional<std::pair<std::size_t, std::size_t>> negative_stretch(std::span<co
   return best;
 }
 
+// A stretch off the plate by the launch rule, from the lift-off (F's crossing below the threshold)
+// to the landing (the first sample, min_flight_time or more after the lift-off, with F back above
+// the launch's ceiling; the record's end when there is none), and how far z rose in it above its
+// height at the lift-off (none without a z column).
+struct Flight {
+  double t_lift_off = 0.0;
+  double t_landing = std::numeric_limits<double>::infinity();
+  std::optional<double> rise;
+};
+
+// The plate's noise wherever the popper is (resting, rocking, in flight): the robust spread of F's
+// changes from sample to sample over sqrt(2). A force that varies slowly against the sampling
+// changes little between samples, and impacts are few. (The snap's launch takes the noise after
+// its peak instead, where a flight follows it.)
+double sample_noise(std::span<const double> F) {
+  if (F.size() < kMinNoiseSamples + 1) return 0.0;
+  std::vector<double> d(F.size() - 1);
+  for (std::size_t i = 0; i + 1 < F.size(); ++i) d[i] = F[i + 1] - F[i];
+  return robust_sigma(std::move(d)) / std::sqrt(2.0);
+}
+
+// Every flight in the record, in order: the launch rule (find_launch) from the record's start, and
+// again from each landing, with the noise of F from sample_noise.
+std::vector<Flight> find_flights(const TimeSeries& s, const AnalysisOptions& o) {
+  const auto t = s.time();
+  const auto F = s.column(kForce);
+  const std::size_t n = t.size();
+  std::vector<Flight> flights;
+  const double noise = sample_noise(F);
+  std::size_t start = 0;
+  while (start + 1 < n) {
+    Analysis probe;  // its warnings are the snap window's business, not the flights'
+    probe.force_noise = noise;
+    const auto peak = find_launch(s, o, start, n - 1, probe);
+    if (!peak) break;
+    Flight f;
+    f.t_lift_off = *probe.t_launch;
+    const double ceiling = std::max(launch_level(o, F[*peak], probe), kQuiet * F[*peak]);
+    std::size_t k = *peak;
+    while (k < n && t[k] < f.t_lift_off) ++k;
+    const std::size_t first = k;
+    while (k < n && (t[k] <= f.t_lift_off + o.min_flight_time || F[k] < ceiling)) ++k;
+    if (k < n) f.t_landing = t[k];
+    if (s.has(kHeight)) {
+      const auto z = s.column(kHeight);
+      const double z_lift_off = interpolate(t, z, f.t_lift_off);
+      double z_top = z_lift_off;
+      for (std::size_t i = first; i < k; ++i) z_top = std::max(z_top, z[i]);
+      f.rise = z_top - z_lift_off;
+    }
+    flights.push_back(f);
+    start = k;
+  }
+  return flights;
+}
+
+// The least rise of z that says the popper flew: noise_multiple times the noise of z (the robust
+// spread of its second differences over sqrt(6), which for independent noise of spread sigma
+// spread by sqrt(6) sigma, while a smooth z adds only its acceleration times the sampling interval
+// squared), and at least g min_flight_time^2 / 8, the top of a free fall that lasts
+// min_flight_time, the shortest stretch off the plate the launch rule calls a flight.
+double flight_threshold(std::span<const double> z, const AnalysisOptions& o) {
+  double sigma = 0.0;
+  if (z.size() >= kMinNoiseSamples + 2) {
+    std::vector<double> d2(z.size() - 2);
+    for (std::size_t i = 0; i + 2 < z.size(); ++i) d2[i] = z[i + 2] - 2.0 * z[i + 1] + z[i];
+    sigma = robust_sigma(std::move(d2)) / std::sqrt(6.0);
+  }
+  const double T = o.min_flight_time;
+  return std::max(o.noise_multiple * sigma, config::kStandardGravity * T * T / 8.0);
+}
+
+bool rose(const Flight& f, double threshold) { return f.rise && *f.rise > threshold; }
+
+// The flight that makes a run Thrown: the highest that rose above the threshold with no contact
+// transition on the plate before it, i.e. with no onset in the record, or with the onset inside
+// the flight (the apex meeting the criterion in the air or on the way down onto it). A flight that
+// landed before an onset on the plate (a hop as the shell unrolls in the ring stage, a throw after
+// which the shell snaps on the plate) is not one.
+const Flight* thrown_flight(const std::vector<Flight>& flights,
+                            const std::optional<double>& t_onset, double threshold) {
+  const Flight* best = nullptr;
+  for (const auto& f : flights) {
+    const bool no_transition = !t_onset || (f.t_lift_off < *t_onset && *t_onset <= f.t_landing);
+    if (no_transition && rose(f, threshold) && (best == nullptr || *f.rise > *best->rise)) {
+      best = &f;
+    }
+  }
+  return best;
+}
+
 // A sustained negative force below this fraction of F's range (or the noise) says F's zero is off.
 constexpr double kTareFraction = 0.05;
 // Shell radii outside this range are not a popper's [m]: a bare number taken as metres.
@@ -400,6 +491,72 @@ void no_snap_settled(const TimeSeries& s, const AnalysisOptions& o, Analysis& a)
         "no onset within the record, which ends {:.3g} ms after delta_p reached zero (at t = "
         "{:.6g} s): the analysis waits {:.3g} ms (option settle_time) before calling it No snap",
         1e3 * (t.back() - t_zero), t_zero, 1e3 * o.settle_time);
+  }
+}
+
+// The record's flights, its highest one and the threshold of a flight put into the analysis.
+std::vector<Flight> report_flights(const TimeSeries& s, const AnalysisOptions& o, Analysis& a) {
+  auto flights = find_flights(s, o);
+  if (!s.has(kHeight)) return flights;
+  a.flight_threshold = flight_threshold(s.column(kHeight), o);
+  for (const auto& f : flights) {
+    if (f.rise && (!a.flight_rise || *f.rise > *a.flight_rise)) {
+      a.flight_rise = f.rise;
+      a.t_lift_off = f.t_lift_off;
+    }
+  }
+  return flights;
+}
+
+// What the outcome needs beside the analysis so far.
+struct OutcomeFacts {
+  bool can_tell = false;      // an onset criterion: w with R, or a contact column
+  bool snap_settled = false;  // an onset without a launch, on long enough to call it Snap
+  bool force_trusted = true;  // F's zero is not off
+  bool has_height = false;    // a z column
+  const std::vector<Flight>& flights;
+};
+
+// The outcome, in one place. On entry a.undetermined says why the record cannot settle the outcome
+// of a snap on the plate or of no onset (empty when it can); a flight without the contact
+// transition on the plate before it overrides that (Thrown).
+void decide_outcome(Analysis& a, const OutcomeFacts& f) {
+  if (!f.can_tell || !f.force_trusted) return;  // a.undetermined says why
+  const double threshold = a.flight_threshold.value_or(0.0);
+  if (const auto* thrown = thrown_flight(f.flights, a.t_onset, threshold)) {
+    a.outcome = theory::Outcome::Thrown;
+    a.undetermined.clear();
+    a.warnings.push_back(fmt::format(
+        "thrown: the popper left the plate at t = {:.6g} s and z rose {:.4g} mm above its height "
+        "there (a flight: more than {:.3g} mm), {}: it flew without the snap on the plate",
+        thrown->t_lift_off, 1e3 * *thrown->rise, 1e3 * threshold,
+        a.t_onset ? fmt::format("with the onset (t = {:.6g} s) in the air", *a.t_onset)
+                  : std::string("with no contact transition in the record")));
+    return;
+  }
+  if (a.t_onset && !a.t_launch) {
+    for (const auto& fl : f.flights) {
+      if (fl.t_landing < *a.t_onset && rose(fl, threshold)) {
+        a.warnings.push_back(fmt::format(
+            "the popper was off the plate from t = {:.6g} s to {:.6g} s, z rising {:.4g} mm, and "
+            "landed before the onset: the snap is the one on the plate after it",
+            fl.t_lift_off, fl.t_landing, 1e3 * *fl.rise));
+        break;
+      }
+    }
+  }
+  if (!a.undetermined.empty()) return;
+  if (a.t_launch) {
+    a.outcome = theory::Outcome::Jump;
+  } else if (a.t_onset) {
+    if (f.snap_settled) a.outcome = theory::Outcome::Snap;
+  } else if (!f.has_height && !f.flights.empty()) {
+    a.undetermined = fmt::format(
+        "no onset, and F says the popper was off the plate from t = {:.6g} s: without a z column "
+        "the record cannot show whether it flew, so it is not called No snap",
+        f.flights.front().t_lift_off);
+  } else {
+    a.outcome = theory::Outcome::NoSnap;
   }
 }
 
@@ -642,12 +799,12 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
           t[last], options.onset_ratio));
     }
     if (a.t_launch && *a.t_launch < t_on) {
-      // The popper left the plate before the apex came down (thrown up by the inflow without a
-      // snap on the plate): the onset found later is the apex coming down with the falling
-      // popper.
+      // The popper left the plate before the apex came down: no snap from the plate. When z shows
+      // the flight, the run is Thrown (decide_outcome); otherwise this stays the reason.
       a.undetermined = fmt::format(
           "the popper left the plate at t = {:.6g} s, before the onset (w / R < {} only at t = "
-          "{:.6g} s, after it came down again): no snap from the plate to measure",
+          "{:.6g} s): no snap from the plate to measure, and z does not show a flight (a rise "
+          "above the flight threshold) that would make it Thrown",
           *a.t_launch, options.onset_ratio, t_on);
     } else if (a.t_launch) {
       a.t_star = *a.t_launch - t_on;
@@ -699,6 +856,7 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
   // A plate pushes and cannot pull: F held below zero says its zero is off (tared with the popper
   // standing on it, or offset), and then neither F* nor the launch threshold nor the outcome can be
   // trusted.
+  bool force_trusted = true;
   {
     const double range =
         *std::max_element(F.begin(), F.end()) - *std::min_element(F.begin(), F.end());
@@ -720,17 +878,21 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
           "--force-offset){}",
           median, 1e3 * (t[neg->second] - t[neg->first]), t[neg->first], hint));
       a.undetermined = "F's zero is off (the record looks tared): the force cannot tell a launch";
+      force_trusted = false;
     }
   }
 
-  if (a.undetermined.empty()) {  // otherwise the record cannot settle the outcome
-    if (a.t_launch) {
-      a.outcome = theory::Outcome::Jump;
-    } else if (a.t_onset && snap_settled) {
-      a.outcome = theory::Outcome::Snap;
-    } else if (!a.t_onset && can_tell) {
-      a.outcome = theory::Outcome::NoSnap;
-    }
+  const auto flights = report_flights(series, options, a);
+  decide_outcome(a, {.can_tell = can_tell,
+                     .snap_settled = snap_settled,
+                     .force_trusted = force_trusted,
+                     .has_height = series.has(kHeight),
+                     .flights = flights});
+  if (const auto why = contradiction(a); !why.empty()) {
+    a.warnings.push_back(
+        fmt::format("the outcome {} is withdrawn: {}", outcome_text(a.outcome), why));
+    a.outcome.reset();
+    a.undetermined = why;
   }
 
   if (c != nullptr) {
@@ -764,6 +926,33 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
   return a;
 }
 
+std::string contradiction(const Analysis& a) {
+  if (!a.outcome) {
+    return a.undetermined.empty() ? "no outcome, and no reason for it was recorded" : "";
+  }
+  const bool flew = a.flight_rise && a.flight_threshold && *a.flight_rise > *a.flight_threshold;
+  switch (*a.outcome) {
+    case theory::Outcome::NoSnap:
+      if (flew) {
+        return fmt::format(
+            "No snap, but the popper flew: z rose {:.4g} mm above its height at the lift-off "
+            "(t = {:.6g} s), more than the {:.3g} mm that make a flight",
+            1e3 * *a.flight_rise, a.t_lift_off.value_or(NAN), 1e3 * *a.flight_threshold);
+      }
+      break;
+    case theory::Outcome::Thrown:
+      if (!flew) return "Thrown, but no flight in the record rose above the flight threshold";
+      break;
+    case theory::Outcome::Jump:
+      if (!a.t_launch) return "Jump, but no launch was found";
+      break;
+    case theory::Outcome::Snap:
+      if (!a.t_onset) return "Snap, but no onset was found";
+      break;
+  }
+  return "";
+}
+
 nlohmann::json to_json(const Analysis& a) {
   using nlohmann::json;
   const auto num = [](const std::optional<double>& v) {
@@ -795,6 +984,9 @@ nlohmann::json to_json(const Analysis& a) {
       {"t_force_rise", a.t_force_rise, "s", "foot of the force's rise to F*"},
       {"t_star_rise", a.t_star_rise, "s", "force rise to launch"},
       {"t_landing", a.t_landing, "s", "first sample back on the plate after the flight"},
+      {"t_lift_off", a.t_lift_off, "s", "lift-off of the record's highest flight"},
+      {"flight_rise", a.flight_rise, "m", "rise of z in that flight above its lift-off height"},
+      {"flight_threshold", a.flight_threshold, "m", "least rise of z that makes a flight"},
       {"alpha_r", a.alpha_r, "1", "r* / sqrt(h R)"},
       {"alpha_e", a.alpha_e, "1", "e* / h"},
       {"alpha_F", a.alpha_F, "1", "F* / (E h^3 / R)"},

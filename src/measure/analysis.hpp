@@ -93,11 +93,20 @@ struct Analysis {
   // down shares the load with the plate and lowers F* (docs/popper.md).
   std::optional<double> delta_p_onset;
   std::optional<double> H_s;  // H - H_l [m]
-  // Jump if launched, Snap if onset without launch, No snap if no onset; absent when the series
-  // cannot tell (no w column or R, and no contact column).
+  // The record's highest flight: a stretch off the plate by the launch rule, from anywhere in the
+  // record (before the onset too), and how far z rose in it above its height at the lift-off.
+  // Absent without a z column or without such a stretch.
+  std::optional<double> t_lift_off;   // [s]
+  std::optional<double> flight_rise;  // [m]
+  // The least rise that says the popper flew: max(noise_multiple sigma_z, g min_flight_time^2 / 8),
+  // sigma_z the noise of z (with a z column) [m].
+  std::optional<double> flight_threshold;
+  // Jump if launched after the onset, Snap if onset without launch, No snap if no onset and no
+  // flight, Thrown if the popper flew without the contact transition on the plate before the
+  // flight; absent (with the reason in `undetermined`) when the series cannot tell.
   std::optional<theory::Outcome> outcome;
-  // Why there is no outcome, when the series could have had one (a record that ends before the
-  // question is settled, a plate whose zero is off); empty otherwise.
+  // Why there is no outcome (a record that ends before the question is settled, a plate whose
+  // zero is off, no onset criterion); never empty when the outcome is absent.
   std::string undetermined;
   // With a case: measured prefactors and scaled quantities.
   std::optional<double> alpha_r;        // r* / sqrt(h R)
@@ -125,6 +134,12 @@ std::string outcome_text(const std::optional<theory::Outcome>& o);
 // (R <= 0, ...).
 Analysis analyze(const TimeSeries& series, const AnalysisOptions& options = {},
                  const config::Case* c = nullptr);
+
+// What in the analysis contradicts its own outcome, in words, or empty when nothing does: No snap
+// for a popper that flew (flight_rise above flight_threshold), Thrown without such a flight, Jump
+// without a launch, Snap without an onset, no outcome without its reason. analyze() withdraws an
+// outcome that this contradicts (the reason then says why).
+std::string contradiction(const Analysis& a);
 
 // The result in SI: {"units": "SI", "quantities": {"t_onset": {"value": .., "unit": "s"}, ..},
 // "outcome": "Jump", "onset_source": .., "warnings": [..]}; absent values are null.

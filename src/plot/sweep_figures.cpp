@@ -400,10 +400,11 @@ std::string phase(const Table& t, const fs::path& table, FigureResult& result,
     std::string_view colour;
     Rows rows;
   };
-  std::array<Group, 4> groups{
+  std::array<Group, 5> groups{
       Group{"jump", "simulation: Jump", 6, style::kBlue, {}},
       Group{"snap", "simulation: Snap", 8, style::kOrange, {}},
       Group{"no snap", "simulation: No snap", 4, style::kRed, {}},
+      Group{"thrown", "simulation: Thrown", 12, "#7a3db8", {}},
       Group{"", "failed / no outcome", 2, "#a0a0a0", {}},
   };
   Extent xs, ys;

@@ -9,6 +9,8 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <string_view>
+#include <utility>
 
 #include "config/files.hpp"
 #include "io/atomic_file.hpp"
@@ -526,6 +528,25 @@ std::vector<Column> table_columns() {
   return cols;
 }
 
+constexpr std::string_view kUndetermined = "undetermined";
+
+// A run's outcome for the table and, when it has none, why: the analysis' reason, or that the run
+// was not analysed (its status says how it ended). Never a blank outcome.
+std::pair<std::string, std::string> outcome_of(const nlohmann::json* measured,
+                                               const std::string& status) {
+  if (measured == nullptr) {
+    return {std::string(kUndetermined), fmt::format("not analysed ({})", status)};
+  }
+  const auto text = [&](const char* key) {
+    const auto it = measured->find(key);
+    return it != measured->end() && it->is_string() ? it->get<std::string>() : std::string();
+  };
+  if (auto outcome = text("outcome"); !outcome.empty()) return {outcome, ""};
+  auto why = text("undetermined");
+  if (why.empty()) why = "no reason recorded (snapjump run --reanalyze writes it)";
+  return {std::string(kUndetermined), why};
+}
+
 }  // namespace
 
 int write_table(const Spec& spec, const fs::path& csv) {
@@ -542,6 +563,7 @@ int write_table(const Spec& spec, const fs::path& csv) {
   const auto columns = table_columns();
   for (const auto& col : columns) header.push_back(col.header);
   header.push_back("wall_time [s]");
+  header.push_back("undetermined");
   header.push_back("error");
 
   std::string out;
@@ -562,9 +584,8 @@ int write_table(const Spec& spec, const fs::path& csv) {
     if (io::run_status::failed(status)) status = io::run_status::kFailed;
     const nlohmann::json* m = nullptr;
     if (summary && summary->contains("measured")) m = &(*summary)["measured"];
-    std::string outcome;
-    if (m && (*m)["outcome"].is_string()) outcome = (*m)["outcome"].get<std::string>();
-    if (!outcome.empty()) ++with_result;
+    const auto [outcome, why] = outcome_of(m, status);
+    if (outcome != kUndetermined) ++with_result;
     std::vector<std::string> row = {r.name, status, outcome, pred.outcome.text()};
     for (std::size_t k = 0; k < r.settings.size(); ++k) {
       const auto& s = r.settings[k];
@@ -576,6 +597,7 @@ int write_table(const Spec& spec, const fs::path& csv) {
     if (summary && (*summary)["wall_time"].is_number())
       wall = (*summary)["wall_time"].get<double>();
     row.push_back(num(wall));
+    row.push_back(why);
     while (!error.empty() && (error.back() == '\n' || error.back() == ' ')) error.pop_back();
     row.push_back(error);
     for (std::size_t i = 0; i < row.size(); ++i) {

@@ -62,6 +62,8 @@ std::string to_string(Outcome o) {
       return "Snap";
     case Outcome::NoSnap:
       return "No snap";
+    case Outcome::Thrown:
+      return "Thrown";
   }
   return "?";
 }

@@ -738,10 +738,11 @@ TEST(Analysis, ATaredPlateIsNamedAndItsOffsetCanBePutBack) {
   EXPECT_FALSE(has_warning(b, "looks tared"));
 }
 
-TEST(Analysis, AFlightBeforeTheOnsetIsNoSnapFromThePlate) {
+TEST(Analysis, AFlightWithTheOnsetInTheAirIsThrown) {
   // Thrown up by the inflow at 10 ms while the apex is still 5 mm up (v0 = g 45 ms, landing at
-  // 100 ms); in the air the shell everts (w = z + 1.0 mm, sagging to 0.8 mm), so w / R < 0.03
-  // (w < 0.9 mm) only just before the landing, where a 3 N impact follows.
+  // 100 ms, top v0^2 / 2g = 9.93 mm); in the air the shell everts (w = z + 1.0 mm, sagging to
+  // 0.8 mm), so w / R < 0.03 (w < 0.9 mm) only just before the landing, where a 3 N impact
+  // follows: the contact transition never happened on the plate.
   constexpr double v0 = g * 45e-3;
   const auto z_of = [v0](double t) {
     const double s = t - 10e-3;
@@ -760,12 +761,21 @@ TEST(Analysis, AFlightBeforeTheOnsetIsNoSnapFromThePlate) {
   };
   spec.t_end = 200e-3;
   const auto a = analyze(make(spec), with_R());
-  EXPECT_FALSE(a.outcome);
-  EXPECT_NE(a.undetermined.find("before the onset"), std::string::npos)
+  EXPECT_EQ(a.outcome, theory::Outcome::Thrown)
       << a.undetermined << " onset " << a.t_onset.value_or(-1) << " launch "
       << a.t_launch.value_or(-1) << " F* " << a.F_star.value_or(-1) << " at "
       << a.t_F_star.value_or(-1);
+  EXPECT_TRUE(a.undetermined.empty()) << a.undetermined;
   EXPECT_FALSE(a.t_star);
+  ASSERT_TRUE(a.t_lift_off && a.flight_rise);
+  EXPECT_NEAR(*a.t_lift_off, 10e-3, kDt);
+  EXPECT_NEAR(*a.flight_rise, 0.5 * v0 * v0 / g, 1e-6);  // the top sampled within 0.05 ms
+  EXPECT_TRUE(has_warning(a, "in the air")) << a.warnings.size();
+  // Without z nothing shows the flight: the launch before the onset leaves it undetermined.
+  spec.with_z = false;
+  const auto b = analyze(make(spec), with_R());
+  EXPECT_FALSE(b.outcome);
+  EXPECT_NE(b.undetermined.find("before the onset"), std::string::npos) << b.undetermined;
 }
 
 TEST(Analysis, APeakRightAfterAFailedCrossingIsStillThePeak) {
@@ -820,6 +830,217 @@ TEST(Analysis, ABareNumberForRIsNamed) {
   const auto a = analyze(make({}), o);
   EXPECT_TRUE(has_warning(a, "not the radius of a popper's shell")) << a.warnings.size();
   EXPECT_FALSE(has_warning(analyze(make({}), with_R()), "not the radius"));
+}
+
+// One series per outcome, each with plain physics: the popper rests on the plate with its weight
+// mg = 0.5 N (z = 0), the plate's force is a triangle spike, and after a lift-off z follows a free
+// flight z = v s - g s^2 / 2 (s from the lift-off); the contact column says ring on the plate,
+// disk once the apex is down, none in flight; delta_p falls from 2 kPa through zero at 50 ms.
+constexpr double kMg = 0.5;
+
+// A triangle of height `top` from t0 to t0 + 2 ms (peak at t0 + 1 ms) over the weight.
+double spike(double t, double t0, double top) {
+  const double s = std::abs(t - t0 - 1e-3) / 1e-3;
+  return s < 1.0 ? kMg + (top - kMg) * (1.0 - s) : kMg;
+}
+
+// A push that rises from the weight at t0 to `top` at t0 + 1 ms and falls to zero at t0 + 2 ms,
+// where the popper leaves the plate.
+double push(double t, double t0, double top) {
+  if (t < t0) return kMg;
+  if (t < t0 + 1e-3) return kMg + (top - kMg) * (t - t0) / 1e-3;
+  return std::max(0.0, top * (t0 + 2e-3 - t) / 1e-3);
+}
+
+// Off the plate in a flight of apex height `top` from lift-off at t0, back on it after 2 v / g.
+bool airborne(double t, double t0, double top) {
+  const double s = t - t0;
+  return s >= 0.0 && s < 2.0 * std::sqrt(2.0 * g * top) / g;
+}
+
+// The height in that flight.
+double flight(double t, double t0, double top) {
+  const double v = std::sqrt(2.0 * g * top), s = t - t0;
+  return airborne(t, t0, top) ? v * s - 0.5 * g * s * s : 0.0;
+}
+
+Spec plain_spec() {
+  Spec spec;
+  spec.with_contact = true;
+  spec.with_dp = true;
+  spec.dp = [](double t) { return 2000.0 - 4e4 * t; };
+  spec.t_end = 300e-3;
+  return spec;
+}
+
+TEST(AnalysisClasses, JumpLeavesThePlateAfterTheSnap) {
+  // Onset at 20.05 ms (w_ref), a 5 N push from 21 to 23 ms, lift-off when it is over, a 40 mm
+  // flight (v = 0.886 m/s, 181 ms long, landing at 204 ms).
+  Spec spec = plain_spec();
+  spec.F = [](double t) {
+    return t < 23e-3 ? push(t, 21e-3, 5.0) : airborne(t, 23e-3, 0.04) ? 0.0 : kMg;
+  };
+  spec.z = [](double t) { return flight(t, 23e-3, 0.04); };
+  spec.contact = [](double t) {
+    if (t < 20.05e-3) return ContactState::Ring;
+    return airborne(t, 23e-3, 0.04) ? ContactState::None : ContactState::Disk;
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump) << a.undetermined;
+  ASSERT_TRUE(a.t_launch && a.flight_rise && a.t_lift_off && a.flight_threshold);
+  EXPECT_NEAR(*a.t_launch, 23e-3 - 0.02 * 1e-3, 1e-9);  // F = 0.02 F* on the flank
+  EXPECT_EQ(*a.t_lift_off, *a.t_launch);                // the highest flight is the jump
+  EXPECT_NEAR(*a.flight_rise, 0.04, 1e-6);
+  EXPECT_TRUE(contradiction(a).empty()) << contradiction(a);
+}
+
+TEST(AnalysisClasses, SnapStaysOnThePlate) {
+  // The same snap without a lift-off: after the spike the weight is back on the plate, z stays.
+  Spec spec = plain_spec();
+  spec.F = [](double t) { return spike(t, 21e-3, 5.0); };
+  spec.z = [](double) { return 0.0; };
+  spec.contact = [](double t) { return t < 20.05e-3 ? ContactState::Ring : ContactState::Disk; };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Snap) << a.undetermined;
+  EXPECT_FALSE(a.t_launch);
+  EXPECT_FALSE(a.flight_rise);
+  EXPECT_TRUE(contradiction(a).empty()) << contradiction(a);
+}
+
+TEST(AnalysisClasses, NoSnapStaysInvertedOnThePlate) {
+  // The apex stays 20 mm up, the weight on the plate throughout, the suction gone at 50 ms.
+  Spec spec = plain_spec();
+  spec.w = [](double) { return 20e-3; };
+  spec.F = [](double) { return kMg; };
+  spec.z = [](double) { return 0.0; };
+  spec.contact = [](double) { return ContactState::Ring; };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::NoSnap) << a.undetermined;
+  EXPECT_FALSE(a.flight_rise);
+  ASSERT_TRUE(a.flight_threshold);
+  EXPECT_NEAR(*a.flight_threshold, g * 5e-3 * 5e-3 / 8.0, 1e-15);  // z has no noise
+  EXPECT_TRUE(contradiction(a).empty()) << contradiction(a);
+}
+
+// The inverted popper thrown by a 100 N push at 100-102 ms (the inflow's overpressure pressing the
+// shell onto the plate), flying 84 mm high (v = 1.284 m/s) while the apex stays 20 mm above the
+// plate, the shell inverted; the suction was gone at 50 ms.
+Spec thrown_spec() {
+  Spec spec = plain_spec();
+  spec.F = [](double t) { return push(t, 100e-3, 100.0); };
+  spec.z = [](double t) { return flight(t, 102e-3, 0.084); };
+  spec.w = [](double t) { return 20e-3 + flight(t, 102e-3, 0.084); };
+  spec.contact = [](double t) { return t < 102e-3 ? ContactState::Ring : ContactState::None; };
+  return spec;
+}
+
+TEST(AnalysisClasses, AFlightWithoutTheContactTransitionIsThrownNotNoSnap) {
+  // The analysis had no onset, the suction gone for 250 ms, and called it No snap.
+  const auto a = analyze(make(thrown_spec()), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Thrown)
+      << outcome_text(a.outcome) << ": " << a.undetermined;
+  EXPECT_FALSE(a.t_onset);
+  ASSERT_TRUE(a.t_lift_off && a.flight_rise && a.flight_threshold && a.H);
+  EXPECT_NEAR(*a.t_lift_off, 102e-3 - 0.02 * 1e-3, 1e-9);  // F = 0.02 F* on the spike's flank
+  EXPECT_NEAR(*a.flight_rise, 0.084, 1e-6);
+  EXPECT_NEAR(*a.H, 0.084, 1e-6);
+  EXPECT_TRUE(has_warning(a, "no contact transition in the record")) << a.warnings.size();
+  EXPECT_TRUE(contradiction(a).empty()) << contradiction(a);
+  // The check the analysis applies to itself: this series can never be No snap.
+  Analysis forced = a;
+  forced.outcome = theory::Outcome::NoSnap;
+  EXPECT_NE(contradiction(forced).find("the popper flew"), std::string::npos);
+}
+
+TEST(AnalysisClasses, AThrowThatLandsBeforeTheSnapOnThePlateIsNotThrown) {
+  // Thrown 5 mm at 10 ms (back at 73.9 ms), then the apex comes down on the plate at 120.05 ms
+  // with a 5 N spike and the popper stays: the snap happened on the plate.
+  Spec spec = plain_spec();
+  spec.F = [](double t) {
+    if (t < 10e-3) return spike(t, 8e-3, 2.0);
+    if (airborne(t, 10e-3, 5e-3)) return 0.0;
+    return spike(t, 121e-3, 5.0);
+  };
+  spec.z = [](double t) { return flight(t, 10e-3, 5e-3); };
+  spec.w = [](double t) { return w_ref(t - 100e-3) + flight(t, 10e-3, 5e-3); };
+  spec.contact = [](double t) {
+    if (t >= 120.05e-3) return ContactState::Disk;
+    return airborne(t, 10e-3, 5e-3) ? ContactState::None : ContactState::Ring;
+  };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::Snap) << outcome_text(a.outcome) << ": " << a.undetermined;
+  ASSERT_TRUE(a.t_onset && a.flight_rise);
+  EXPECT_NEAR(*a.t_onset, 120.05e-3, 1e-9);
+  EXPECT_NEAR(*a.flight_rise, 5e-3, 1e-6);
+  EXPECT_TRUE(has_warning(a, "landed before the onset")) << a.warnings.size();
+}
+
+TEST(AnalysisClasses, AHopBelowTheFlightThresholdIsNoFlight) {
+  // Off the plate for 8 ms at 100 ms, z rising 10 um (a counterweighted popper barely lifting,
+  // deceleration 1.25 m/s^2): less than g (5 ms)^2 / 8 = 30.7 um, so No snap stands.
+  Spec spec = plain_spec();
+  spec.w = [](double) { return 20e-3; };
+  spec.F = [](double t) { return t > 100e-3 && t < 108e-3 ? 0.0 : kMg; };
+  spec.z = [](double t) {
+    const double s = t - 100e-3;
+    return s > 0.0 && s < 8e-3 ? 5e-3 * s - 0.5 * 1.25 * s * s : 0.0;
+  };
+  spec.contact = [](double) { return ContactState::Ring; };
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_EQ(a.outcome, theory::Outcome::NoSnap) << a.undetermined;
+  ASSERT_TRUE(a.flight_rise && a.flight_threshold);
+  EXPECT_NEAR(*a.flight_rise, 1e-5, 1e-6);  // less z at the lift-off, 0.1 ms in
+  EXPECT_LT(*a.flight_rise, *a.flight_threshold);
+}
+
+TEST(AnalysisClasses, WithoutZAPopperOffThePlateIsNotNoSnap) {
+  // The thrown series without its z column: F alone says the popper left the plate, not whether
+  // it flew. The analysis had called it No snap.
+  Spec spec = thrown_spec();
+  spec.with_z = false;
+  const auto a = analyze(make(spec), with_R());
+  EXPECT_FALSE(a.outcome) << outcome_text(a.outcome);
+  EXPECT_NE(a.undetermined.find("without a z column"), std::string::npos) << a.undetermined;
+}
+
+TEST(AnalysisClasses, AContradictedOrUnexplainedOutcomeIsNamed) {
+  Analysis a;
+  EXPECT_NE(contradiction(a).find("no reason"), std::string::npos);  // no outcome, no reason
+  a.undetermined = "the record ends too soon";
+  EXPECT_TRUE(contradiction(a).empty());
+  a = {};
+  a.outcome = theory::Outcome::Thrown;
+  EXPECT_FALSE(contradiction(a).empty());  // no flight
+  a.flight_rise = 1e-3;
+  a.flight_threshold = 3e-5;
+  EXPECT_TRUE(contradiction(a).empty());
+  a.outcome = theory::Outcome::Jump;
+  EXPECT_NE(contradiction(a).find("no launch"), std::string::npos);
+  a.outcome = theory::Outcome::Snap;
+  EXPECT_NE(contradiction(a).find("no onset"), std::string::npos);
+  a.outcome = theory::Outcome::NoSnap;
+  EXPECT_NE(contradiction(a).find("the popper flew"), std::string::npos);
+  a.flight_rise = 1e-5;  // a hop below the threshold
+  EXPECT_TRUE(contradiction(a).empty());
+}
+
+TEST(AnalysisClasses, EveryUndeterminedOutcomeCarriesItsReason) {
+  std::vector<Spec> specs(6, plain_spec());
+  specs[1] = thrown_spec();
+  specs[1].with_z = false;
+  specs[2].t_end = 24e-3;  // cut during the snap
+  specs[3].with_w = false;
+  specs[3].with_contact = false;                          // no onset criterion
+  specs[4].F = [](double t) { return F_jump(t) - 0.5; };  // tared
+  specs[5].with_dp = false;
+  specs[5].w = [](double) { return 20e-3; };  // no onset and no delta_p
+  specs[5].F = [](double) { return kMg; };
+  specs[5].z = [](double) { return 0.0; };
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const auto a = analyze(make(specs[i]), with_R());
+    EXPECT_TRUE(a.outcome || !a.undetermined.empty()) << "series " << i;
+    EXPECT_TRUE(contradiction(a).empty()) << "series " << i << ": " << contradiction(a);
+  }
 }
 
 }  // namespace

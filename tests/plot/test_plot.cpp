@@ -175,7 +175,7 @@ fs::path make_sweep(const fs::path& dir, bool with_cases = true, const std::stri
   const double mgs[] = {0.2, 0.48, 1.0, 2.0, 4.0, 0.48};
   const double hs[] = {2.5e-3, 2.0e-3, 1.5e-3, 1.0e-3, 2.5e-3, 2.0e-3};
   const double mus[] = {0.0, 0.1, 0.2, 0.3, 0.5, 0.3};
-  const char* outcomes[] = {"Jump", "Jump", "Snap", "No snap", "Jump", ""};
+  const char* outcomes[] = {"Jump", "Jump", "Snap", "No snap", "Thrown", "undetermined"};
   for (int i = 0; i < 6; ++i) {
     auto c = config::default_case();
     c.popper.net_weight = mgs[i];
@@ -371,7 +371,7 @@ TEST_F(Plot, SweepFigures) {
       {"flight", {"E h^4 / (m g R^2) [-]", "H_s / R [-]"}},
       {"phase",
        {"aspect ratio h / R [-]", "E h^2 / (m g) [-]", "Snap / No snap", "$snap",
-        "failed / no outcome"}},
+        "simulation: Thrown", "failed / no outcome"}},
       {"friction", {"friction coefficient μ [-]", "α_F = F* / (E h^3 / R) [-]"}},
   };
   for (const auto& [figure, labels] : figures) {

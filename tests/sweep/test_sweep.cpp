@@ -328,8 +328,37 @@ TEST(SweepExecute, RunsWhatIsLeftRecordsFailuresAndResumesInterruptedRuns) {
   EXPECT_NE(header.find("alpha_F_lo [1]"), std::string::npos);
   EXPECT_EQ(r0.rfind("run-0000,completed,Jump,", 0), 0u) << r0;
   EXPECT_NE(r0.find(",0.9,"), std::string::npos);
-  EXPECT_EQ(r1.rfind("run-0001,failed,,", 0), 0u) << r1;
+  EXPECT_EQ(r1.rfind("run-0001,failed,undetermined,", 0), 0u) << r1;
+  EXPECT_NE(r1.find("not analysed (failed)"), std::string::npos) << r1;
   EXPECT_NE(r1.find("exit status 3"), std::string::npos);
+}
+
+TEST(SweepTable, AnOutcomeIsNeverBlankAndAnUndeterminedOneCarriesItsReason) {
+  const auto dir = scratch("table-outcomes");
+  const auto spec = small_spec(dir);
+  prepare_folder(spec);
+  // An analysis without an outcome, one written before the reason was recorded, a thrown run.
+  write(paths_of(spec, spec.runs[0]).dir / "summary.json",
+        R"({"status": "completed", "measured": {"outcome": null, "undetermined": "the record )"
+        R"(ends 45.8 ms after the force peak"}})");
+  write(paths_of(spec, spec.runs[1]).dir / "summary.json",
+        R"({"status": "completed", "measured": {"outcome": null}})");
+  write(paths_of(spec, spec.runs[2]).dir / "summary.json",
+        R"({"status": "completed", "measured": {"outcome": "Thrown", "undetermined": null}})");
+  const auto csv = dir / "out" / "sweep.csv";
+  EXPECT_EQ(write_table(spec, csv), 1);
+  std::istringstream rows(read(csv));
+  std::string header, r0, r1, r2;
+  std::getline(rows, header);
+  std::getline(rows, r0);
+  std::getline(rows, r1);
+  std::getline(rows, r2);
+  EXPECT_NE(header.find(",wall_time [s],undetermined,error"), std::string::npos) << header;
+  EXPECT_EQ(r0.rfind("run-0000,completed,undetermined,", 0), 0u) << r0;
+  EXPECT_NE(r0.find(",the record ends 45.8 ms after the force peak,"), std::string::npos) << r0;
+  EXPECT_EQ(r1.rfind("run-0001,completed,undetermined,", 0), 0u) << r1;
+  EXPECT_NE(r1.find("no reason recorded"), std::string::npos) << r1;
+  EXPECT_EQ(r2.rfind("run-0002,completed,Thrown,", 0), 0u) << r2;
 }
 
 }  // namespace
