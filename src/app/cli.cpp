@@ -427,7 +427,7 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out, std::ostream& err) {
       std::vector<std::string> row{r.file};
       if (r.analysis) {
         const auto& a = *r.analysis;
-        row.push_back(a.outcome ? theory::to_string(*a.outcome) : std::string());
+        row.push_back(measure::outcome_text(a.outcome));
         for (const auto& col : kRecordColumns) {
           const auto& v = a.*col.field;
           if (!v) {

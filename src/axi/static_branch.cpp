@@ -416,10 +416,16 @@ StaticBranch Tracer::run() {
       break;
     }
     const double dq = s.q - previous->q;
+    if (rise < 0 && dq > 0 && s.q * o_.p_ref > o_.max_dp_before_buckling) {
+      b.stop_reason = fmt::format("dp rose past {:.6g} Pa before the branch's buckling maximum",
+                                  o_.max_dp_before_buckling);
+      break;
+    }
     if (rise < 0 && dq < 0) rise = 0;   // past a maximum
     if (rise == 0 && dq > 0) rise = 1;  // and then a minimum
     if (rise == 1 && dq < 0) rise = 0;
-    if (rise == 1 && std::isfinite(o_.end_dp) && s.q * o_.p_ref >= o_.end_dp) {
+    // end_dp is met on the inverted side only (V < 0: the shell through its rim's plane).
+    if (rise == 1 && s.v < 0.0 && std::isfinite(o_.end_dp) && s.q * o_.p_ref >= o_.end_dp) {
       b.reached_end = at_end_dp(s, *previous);
       if (b.reached_end) b.points.back() = point(s, 0);
       if (!b.reached_end) b.stop_reason = "no equilibrium at exactly end_dp next to the branch";

@@ -52,9 +52,12 @@ struct BranchOptions {
   double step = 0.02;        // first and largest arclength step in (v, q)
   double min_step = 1e-5;    // below this the continuation gives up
   double end_volume = -1.0;  // stop once v = V / V0 falls below this
-  // Or, past p_c and a minimum, stop once dp rises to end_dp [Pa] (NaN: not used), and solve for
-  // the equilibrium at exactly end_dp (StaticBranch::state).
+  // Or, past p_c and a minimum, on the inverted side (V < 0), stop once dp rises to end_dp [Pa]
+  // (NaN: not used), and solve for the equilibrium at exactly end_dp (StaticBranch::state).
   double end_dp = std::numeric_limits<double>::quiet_NaN();
+  // Stop, not reaching the end, once dp rises past this [Pa] before the branch's first maximum:
+  // a suction raised no further never buckles the cap (NaN: not used).
+  double max_dp_before_buckling = std::numeric_limits<double>::quiet_NaN();
   int max_points = 5000;
   bool contacts = true;     // self-contact and the container's cone
   double tolerance = 1e-8;  // Newton: |residual| below this times p_ref times the rim's area

@@ -76,6 +76,7 @@ std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(d
   axi::BranchOptions o;
   o.p_ref = p_ref;
   o.end_dp = dp;
+  o.max_dp_before_buckling = dp;
   o.end_volume = -std::numeric_limits<double>::max();  // only end_dp ends it
   const auto b = axi::trace_static_branch(body_, o);
   dynamics_.mutable_positions() = b.state;

@@ -288,6 +288,13 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
   prep.buckling_pressure = known(qs.p_c);
   prep.reverse_pressure = known(qs.p_minus);
   prep.hold_pressure = known(qs.p_hold);
+  if (!std::isfinite(qs.p_c)) {
+    prep.message = fmt::format(
+        "the shell did not invert under {:.0f} Pa ({:.1f} p_c): its quasi-static branch has not "
+        "reached its buckling maximum there ({})",
+        p_buckle, settings_.buckle_factor, qs.note);
+    return false;
+  }
   if (!qs.reached || !qs.stable || !inverted()) {
     prep.message = fmt::format(
         "the pressure-volume branch did not bring the shell to a stable inverted state under "

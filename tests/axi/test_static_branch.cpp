@@ -6,7 +6,10 @@
 //   is unstable (there dV/dp > 0) and the segments where the volume falls as the suction rises are
 //   stable, which the factorisation of the stiffness at fixed dp must agree with;
 // - the equilibrium asked at a given suction on the inverted segment lies at that suction;
-// - p_c moves by less than 0.5 % when the mesh is refined twice along the meridian.
+// - p_c moves by less than 0.5 % when the mesh is refined twice along the meridian;
+// - the thin-shell theory's branch (theory/shell_branch.hpp, no code shared) has the same p_-
+//   within 2 %, and a p_c that differs by less than h / R, the order of the thickness' effects
+//   that thin-shell theory leaves out.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +18,7 @@
 
 #include "axi/body.hpp"
 #include "axi/static_branch.hpp"
+#include "theory/shell_branch.hpp"
 
 namespace snapjump::axi {
 namespace {
@@ -89,6 +93,29 @@ TEST(StaticBranch, BucklingPressureConvergesAlongTheMeridian) {
   const auto fine = trace_static_branch(make_body(42), options(0.8));
   std::printf("p_c: %.6g Pa (2 x 21), %.6g Pa (2 x 42)\n", coarse.p_c, fine.p_c);
   EXPECT_NEAR(coarse.p_c / fine.p_c, 1.0, 5e-3);
+}
+
+TEST(StaticBranch, AgreesWithTheThinShellTheory) {
+  const auto fe = trace_static_branch(make_body(21), options(0.3));
+  const auto st = theory::trace_shell_branch({kR, kH, kPhi, kE, kNu});
+  std::printf("p_c: %.5g Pa (solid), %.5g Pa (shell theory); p_-: %.5g Pa, %.5g Pa\n", fe.p_c,
+              st.p_c, fe.p_minus, st.p_minus);
+  EXPECT_NEAR(fe.p_minus / st.p_minus, 1.0, 0.02);
+  EXPECT_NEAR(fe.p_c / st.p_c, 1.0, kH / kR);
+}
+
+// A suction that stops short of the buckling maximum (0.9 of Zoelly's, the branch's is 0.943)
+// never buckles the cap: the branch says so instead of going on to the inverted state.
+TEST(StaticBranch, StopsWhereTheSuctionWouldNotBuckleTheCap) {
+  auto o = options(-3.0);
+  o.end_dp = 1.4 * kPref;
+  o.max_dp_before_buckling = 0.9 * kPref;
+  const auto b = trace_static_branch(make_body(21), o);
+  EXPECT_FALSE(b.reached_end);
+  EXPECT_TRUE(std::isnan(b.p_c));
+  EXPECT_NE(b.stop_reason.find("before the branch's buckling maximum"), std::string::npos)
+      << b.stop_reason;
+  EXPECT_LE(b.points.back().dp, 0.9 * kPref * 1.1);
 }
 
 TEST(StaticBranch, RefusesUnusableOptions) {
