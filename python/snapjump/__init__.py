@@ -172,10 +172,14 @@ def run(case=None, output=None, resolution=None, model=None, end_time=None, resu
         progress=None, **values):
     """Simulates the popper in this process (`snapjump run`) and returns its folder. progress is
     called with each line the run prints (progress and results); Ctrl-C stops the run with a checkpoint past the release
-    (KeyboardInterrupt; continue with run(resume=folder))."""
+    (KeyboardInterrupt; continue with run(resume=folder)). end_time caps the simulated time (the
+    run ends at the apex of the flight, at the latest there); with resume, a later cap continues a
+    run that went to its own."""
     with _CaseFile(None if resume is not None else case) as files:
         if resume is not None:
             args = ["run", "--resume", os.fspath(resume)]
+            if end_time is not None:
+                args += ["--end-time", _value(end_time)]
         else:
             args = ["run", *_case_args(files, values)]
             if output is not None:

@@ -569,6 +569,21 @@ std::optional<std::string> unknown_word(CLI::App& app, int argc, const char* con
   return std::nullopt;
 }
 
+// --end-time's value given with --resume [s].
+double parse_end_time(const std::string& text) {
+  const units::UnitParser parser;
+  double t = 0.0;
+  try {
+    t = parser.parse(text, units::Dimension::Time);
+  } catch (const units::UnitError& e) {
+    throw config::CaseError(fmt::format("--end-time: {}", e.what()));
+  }
+  if (!(t > 0.0 && std::isfinite(t))) {
+    throw config::CaseError(fmt::format("--end-time {}: must be positive", text));
+  }
+  return t;
+}
+
 }  // namespace
 
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
@@ -692,7 +707,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
                       "stop at this time after the release (e.g. 0.2s), leaving a checkpoint");
   run_cmd
       ->add_option("--resume", run_opts.resume,
-                   "continue a stopped or paused run in this folder from its last checkpoint")
+                   "continue a paused, interrupted or killed run in this folder from its last "
+                   "checkpoint; with --end-time, a run that went to its cap goes on to the later "
+                   "one (or to the apex)")
       ->check(CLI::ExistingDirectory);
   std::string reanalyze;
   run_cmd
@@ -769,14 +786,29 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         }
         return reanalyze_run(reanalyze, out);
       }
+      // Ctrl-C stops the run with a checkpoint, unless the embedding program stops it itself.
+      std::optional<SigintStop> sigint;
+      if (hooks.stop_requested) {
+        run_opts.stop_requested = hooks.stop_requested;
+      } else {
+        sigint.emplace();
+        run_opts.stop_requested = [&sigint] { return sigint->requested(); };
+      }
       if (!run_opts.resume.empty()) {
-        if (sets_up_a_run) {
+        // A new cap is the one case value a resume takes.
+        auto values = run_case.values;
+        const auto end = values.find("numerics.end_time");
+        if (end != values.end()) {
+          run_opts.end_time = parse_end_time(end->second);
+          values.erase(end);
+        }
+        if (!run_case.case_file.empty() || !values.empty() || !run_resolution.empty() ||
+            !run_model.empty() || !run_bulk.empty() || !run_opts.output.empty()) {
           throw config::CaseError(
               "--resume continues a run as it was set up (its case.toml, its folder): give no "
-              "case file, case values, --resolution, --model, --bulk-integration or --output with "
-              "it");
+              "case file, case values (but --end-time, a later cap), --resolution, --model, "
+              "--bulk-integration or --output with it");
         }
-        run_opts.stop_requested = hooks.stop_requested;
         return run_simulation(config::Case{}, run_opts, out, err);
       }
       auto c = run_case.load();
@@ -785,7 +817,6 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       if (const auto b = config::parse_bulk_integration(run_bulk)) {
         c.numerics.bulk_integration = *b;
       }
-      run_opts.stop_requested = hooks.stop_requested;
       return run_simulation(c, run_opts, out, err);
     }
   } catch (const InputError& e) {  // a case, a unit, a series, a mesh, a sweep file, a figure

@@ -10,11 +10,15 @@ namespace snapjump::app {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the program failed (I/O, numerics)
 inline constexpr int kExitBadInput = 2;  // bad command line or case file
+// A run stopped by Ctrl-C (or the stop hook), 128 + SIGINT as a shell reports a process ended
+// by the signal; past the release it can be resumed.
+inline constexpr int kExitInterrupted = 130;
 
 // What a program that embeds the command line (the Python module) can hook into.
 struct CliHooks {
-  // Asked now and then during a run (a few times a second): true stops it, with a checkpoint
-  // when it is past the release (the run can be resumed), as --pause-at does.
+  // Asked now and then during a run (a few times a second): true stops it as Ctrl-C does, with a
+  // checkpoint when it is past the release (the run can be resumed). Without it, `run` takes
+  // SIGINT itself (app::SigintStop).
   std::function<bool()> stop_requested;
 };
 

@@ -6,6 +6,7 @@
 #include <sys/prctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
@@ -16,6 +17,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "app/checkpoint.hpp"
 #include "app/cli.hpp"
@@ -36,6 +38,35 @@ namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
+
+// Set by the SIGINT handler, read by SigintStop::requested. A signal handler gets no argument
+// through which it could reach an object of the run's, so what it tells the run must be an object
+// of static storage, and the one such object a handler may write and the program read back
+// without lock-free atomics is a volatile std::sig_atomic_t. Only SigintStop touches it.
+volatile std::sig_atomic_t g_sigint = 0;
+
+// Async-signal-safe: one store, nothing else (no allocation, no I/O, no lock). The run sees the
+// flag in its loop and stops there.
+void note_sigint(int /*signal*/) { g_sigint = 1; }
+
+// dir as one word of a shell command line: as it is when it holds only safe characters, quoted
+// otherwise.
+std::string shell_word(const fs::path& dir) {
+  const std::string s = dir.string();
+  const bool safe = !s.empty() && std::all_of(s.begin(), s.end(), [](char ch) {
+    return std::isalnum(static_cast<unsigned char>(ch)) ||
+           std::string_view("/._-+:=@,").find(ch) != std::string_view::npos;
+  });
+  if (safe) return s;
+  std::string quoted = "'";
+  for (const char ch : s) quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return quoted + "'";
+}
+
+// The command that continues the run in dir.
+std::string resume_command(const fs::path& dir) {
+  return "snapjump run --resume " + shell_word(dir);
+}
 
 // A new folder: the given one must not exist or must be empty; the default one gets a suffix
 // when it exists. Nothing is ever overwritten.
@@ -92,6 +123,39 @@ void print_numerics(std::ostream& out, const popper::Popper& pop) {
   if (!c.defaults_used.empty()) {
     fmt::print(out, "  assumed     {}\n", fmt::join(c.defaults_used, "; "));
   }
+  const double cap = pop.numerics().end_time;
+  if (c.numerics.end_time) {
+    fmt::print(out,
+               "  end         the apex of the flight, at most {:.6g} s after the release "
+               "(numerics.end_time)\n",
+               cap);
+  } else {
+    const auto d = popper::default_end(c);
+    fmt::print(out,
+               "  end         the apex of the flight, at most {:.4g} s after the release: {} x "
+               "{:.3g} s, the valve's refill of the cavity at delta_p_j, + 2 x {:.3g} s, the rise "
+               "to the theory's highest H, {:.3g} mm (numerics.end_time sets another cap)\n",
+               cap, popper::kRefillsBeforeTheCap, d.refill, d.rise, 1e3 * d.height);
+  }
+}
+
+// The end rule in the summary: where the run stops, and where its cap comes from.
+nlohmann::json end_json(const config::Case& c, double cap) {
+  return {{"rule", "the apex of the flight, at most the cap"},
+          {"cap", cap},
+          {"cap_from", c.numerics.end_time ? "numerics.end_time" : "default"}};
+}
+
+// A record that ends at the cap stops before the apex (or before any flight): its H and H_s are
+// lower bounds whatever its last samples show, and the analysis says so.
+void note_lower_bounds(measure::Analysis& a, const measure::TimeSeries& series) {
+  const std::string_view said = "H and H_s are lower bounds";
+  if (std::none_of(a.warnings.begin(), a.warnings.end(),
+                   [&](const std::string& w) { return w.find(said) != std::string::npos; })) {
+    a.warnings.push_back(
+        fmt::format("the run stopped at its cap, t = {:.6g} s, before the apex of the flight: {}",
+                    series.empty() ? 0.0 : series.time().back(), said));
+  }
 }
 
 // Analyses the run's time series, puts the measured quantities, the theory's and their
@@ -102,9 +166,15 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   // F also as the paper's force plate would have recorded it (F_star_plate, alpha_F_plate).
   measure::AnalysisOptions options;
   options.plate_frequency = measure::kPaperPlateFrequency;
-  const auto analysis = measure::analyze(series, options, &c);
+  auto analysis = measure::analyze(series, options, &c);
+  const bool capped = io::run_status::capped(status);
+  if (capped) note_lower_bounds(analysis, series);
   const auto prediction = theory::predict(c, theory::contact_constants());
   summary["measured"] = measure::to_json(analysis);
+  if (capped) {
+    for (const char* key : {"H", "H_s", "H_s_scaled"})
+      summary["measured"]["quantities"][key]["lower_bound"] = true;
+  }
   summary["theory"] = io::to_json(c, prediction);
   const auto compare = [&](const char* name, const std::optional<double>& v, theory::Range r) {
     summary["comparison"][name] = {{"measured", v ? nlohmann::json(*v) : nlohmann::json(nullptr)},
@@ -121,9 +191,10 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   write_json_file(dir / "summary.json", summary);
 
   const auto show = [&](const char* label, const std::optional<double>& v, double scale,
-                        const char* unit, std::string theory) {
+                        const char* unit, std::string theory, bool at_least = false) {
     fmt::print(out, "  {:<28} {:>10}  {:<4} theory {}\n", label,
-               v ? fmt::format("{:.4g}", *v / scale) : std::string("-"), unit, theory);
+               v ? fmt::format("{}{:.4g}", at_least ? ">= " : "", *v / scale) : std::string("-"),
+               unit, theory);
   };
   const auto range = [](theory::Range r, double scale) {
     return fmt::format("{:.4g} .. {:.4g}", r.lo / scale, r.hi / scale);
@@ -148,8 +219,8 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   }
   beside("  force rise to launch", analysis.t_star_rise, 1e-3, "ms");
   show("H_l lift to the onset", analysis.H_l, 1e-3, "mm", range(prediction.H_l, 1e-3));
-  show("H_s flight from the snap", analysis.H_s, 1e-3, "mm", range(prediction.H_s, 1e-3));
-  show("H   jump height", analysis.H, 1e-3, "mm", range(prediction.H, 1e-3));
+  show("H_s flight from the snap", analysis.H_s, 1e-3, "mm", range(prediction.H_s, 1e-3), capped);
+  show("H   jump height", analysis.H, 1e-3, "mm", range(prediction.H, 1e-3), capped);
   if (analysis.delta_p_onset) {
     fmt::print(out, "  {:<28} {:>10.4g}  kPa  (suction left when the apex comes down)\n",
                "delta_p at the onset", *analysis.delta_p_onset / 1e3);
@@ -190,6 +261,12 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
 class ResumeRefused : public config::CaseError {
  public:
   using config::CaseError::CaseError;
+};
+
+// The run stopped on request before its release; what() is its status.
+class StoppedInThePreparation : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 // A run continues only with the numerics it started with: a snapjump whose defaults have changed
@@ -264,6 +341,7 @@ class Run {
     print_numerics(out_, pop_);
     summary_["numerics"] = pop_.model().numerics_json();
     summary_["numerics"]["end_time"] = numerics_.end_time;
+    summary_["end"] = end_json(c_, numerics_.end_time);
   }
 
   // Phases 1-3 and the release. False when the shell did not stay inverted under delta_p_j (the
@@ -272,15 +350,18 @@ class Run {
   // Continues from the folder's checkpoint, with the series as it was there.
   void resume();
 
+  enum class Stop { No, Pause, Interrupt };
   struct End {
     std::string status;
-    bool paused = false;
+    Stop stop = Stop::No;
   };
-  // Steps to the apex of the flight after the snap, the end time, a pause, or a failure (the
-  // status says which; what was written stays).
+  // Steps to the apex of the flight after the snap, the cap, a pause, a stop request or a failure
+  // (the status says which; what was written stays). At the cap it leaves a checkpoint, from
+  // which a resume with a later cap goes on.
   End go_to_the_apex();
-  // A paused run's summary; the run goes on with --resume.
+  // A paused or interrupted run's summary; the run goes on with --resume.
   int pause();
+  int interrupt();
   // The analysis, the summary, the files and the figures.
   int finish(const std::string& status);
 
@@ -292,6 +373,13 @@ class Run {
   popper::Sample record();
   // The preparation's progress line for a phase; stops the run when the user asked.
   void preparation_progress(const std::string& phase, double t, double fraction);
+  // Refuses (ResumeRefused) a resume of a run with this status that has nothing to continue to.
+  void check_continuable(const std::string& status) const;
+  // Refuses a new cap that is not after the time the run has reached (last_t) [s].
+  void check_new_end(double last_t) const;
+  bool stop_requested();
+  // The release's progress line, every five seconds.
+  void progress(double run_start, long start_steps);
 
   const config::Case& c_;
   const popper::Numerics& numerics_;
@@ -335,15 +423,21 @@ popper::Sample Run::record() {
   return s;
 }
 
+// The stop hook, asked at most four times a second.
+bool Run::stop_requested() {
+  if (!options_.stop_requested || wall() - last_stop_check_ < 0.25) return false;
+  last_stop_check_ = wall();
+  return options_.stop_requested();
+}
+
 // Each phase with its share done and, from its pace so far, at most how long it has to go (the
 // buckling and the grounding may end early).
 void Run::preparation_progress(const std::string& phase, double t, double fraction) {
-  if (options_.stop_requested && wall() - last_stop_check_ >= 0.25) {
-    last_stop_check_ = wall();
-    if (options_.stop_requested()) {
-      throw std::runtime_error(fmt::format(
-          "stopped during the preparation ({}, t = {:.4f} s): nothing to resume", phase, t));
-    }
+  if (stop_requested()) {
+    throw StoppedInThePreparation(fmt::format(
+        "{} in the preparation ({}, t = {:.4f} s), before the release: nothing to resume; start "
+        "the run again",
+        io::run_status::kInterrupted, phase, t));
   }
   if (phase != current_phase_) {
     current_phase_ = phase;
@@ -394,7 +488,40 @@ bool Run::prepare_and_release() {
   return true;
 }
 
+void Run::check_continuable(const std::string& status) const {
+  namespace rs = io::run_status;
+  const auto refuse = [&](const std::string& why) {
+    throw ResumeRefused(fmt::format("--resume {}: {}", dir_.string(), why));
+  };
+  if (status == rs::kCompletedAtApex) {
+    refuse("the run ended at the apex of its flight: there is nothing to continue");
+  }
+  if (status == rs::kSnappedBack || status == rs::kDidNotInvert) {
+    refuse(
+        fmt::format("the run ended in its preparation ({}): there is nothing to continue", status));
+  }
+  if (rs::interrupted(status) && !fs::exists(dir_ / "checkpoint.bin")) {
+    refuse(fmt::format("the run has no state to continue from ({}): start it again", status));
+  }
+  if (rs::capped(status) && !options_.end_time) {
+    refuse(fmt::format(
+        "the run went to its cap on simulated time before the apex ({}); continue it to a later "
+        "cap: {} --end-time T",
+        status, resume_command(dir_)));
+  }
+}
+
+void Run::check_new_end(double last_t) const {
+  if (options_.end_time && !(*options_.end_time > last_t + 1e-12)) {
+    throw ResumeRefused(fmt::format(
+        "--resume {} --end-time {:.6g} s: the run has reached t = {:.6g} s already; give a later "
+        "end",
+        dir_.string(), *options_.end_time, last_t));
+  }
+}
+
 void Run::resume() {
+  std::string status;
   if (std::ifstream prev(dir_ / "summary.json"); prev) {
     const auto before = nlohmann::json::parse(prev, nullptr, false);
     if (before.is_object() && before.contains("preparation")) {
@@ -403,12 +530,20 @@ void Run::resume() {
     if (before.is_object() && before.contains("numerics")) {
       check_same_numerics(before["numerics"], summary_["numerics"], dir_);
     }
+    if (before.is_object() && before.contains("status") && before["status"].is_string()) {
+      status = before["status"].get<std::string>();
+    }
   }
+  check_continuable(status);
   loop_ = read_checkpoint(dir_, pop_);
   // The series as it was at the checkpoint: rows written after it are dropped.
   const auto old = measure::TimeSeries::read_csv_file(dir_ / "series.csv");
   if (old.size() < loop_.rows)
     throw std::runtime_error("series.csv is shorter than its checkpoint");
+  // A run at its cap may have gone on past its last checkpoint (an earlier build wrote none at
+  // the cap): the new cap must lie beyond both.
+  const bool at_its_cap = io::run_status::capped(status) && !old.empty();
+  check_new_end(at_its_cap ? std::max(pop_.time(), old.time().back()) : pop_.time());
   // The rows that belong to the checkpoint go to a new file, which then replaces the old one in
   // one rename: a run killed at any moment keeps either series.csv as it was or the new one,
   // never a series shorter than its checkpoint. The writer goes on appending to the renamed file.
@@ -434,7 +569,8 @@ void Run::resume() {
 }
 
 Run::End Run::go_to_the_apex() {
-  End end{std::string(io::run_status::kCompleted)};
+  End end{io::run_status::capped_at(numerics_.end_time)};
+  bool apex = false;
   last_stop_check_ = 0.0;
   const double run_start = wall();
   const long start_steps = pop_.steps();
@@ -449,6 +585,7 @@ Run::End Run::go_to_the_apex() {
         // Stop at the apex of the flight after the snap (popper::FlightWatch).
         if (loop_.flight.apex_reached(record())) {
           end.status = io::run_status::kCompletedAtApex;
+          apex = true;
           break;
         }
       }
@@ -456,42 +593,57 @@ Run::End Run::go_to_the_apex() {
         loop_.next_snapshot += numerics_.snapshot_interval;
         snapshot();
       }
-      bool pause_now = options_.pause_at && pop_.time() + 1e-12 >= *options_.pause_at;
-      if (options_.stop_requested && wall() - last_stop_check_ >= 0.25) {
-        last_stop_check_ = wall();
-        pause_now = pause_now || options_.stop_requested();
+      if (options_.pause_at && pop_.time() + 1e-12 >= *options_.pause_at) {
+        end.stop = Stop::Pause;
+      } else if (stop_requested()) {
+        end.stop = Stop::Interrupt;
       }
-      if (pop_.time() + 1e-12 >= loop_.next_checkpoint || pause_now) {
+      if (pop_.time() + 1e-12 >= loop_.next_checkpoint || end.stop != Stop::No) {
         loop_.next_checkpoint += numerics_.checkpoint_interval;
         write_checkpoint(dir_, pop_, loop_);
       }
-      if (pause_now) {
-        end.paused = true;
-        break;
-      }
-      if (!options_.quiet && wall() - last_print_ >= 5.0) {
-        last_print_ = wall();
-        const double rate = (pop_.steps() - start_steps) / std::max(1e-9, wall() - run_start);
-        const double eta = (numerics_.end_time - pop_.time()) / pop_.dt() / std::max(rate, 1e-9);
-        fmt::print(err_,
-                   "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s "
-                   "to go, delta_p = {:.0f} Pa, z = {:.2f} mm\n",
-                   wall(), pop_.time(), rate, eta, pop_.gas().delta_p(), 1e3 * pop_.container().z);
-      }
+      if (end.stop != Stop::No) break;
+      progress(run_start, start_steps);
     }
+    // At the cap: the state there, for a resume to a later cap.
+    if (!apex && end.stop == Stop::No) write_checkpoint(dir_, pop_, loop_);
   } catch (const std::exception& e) {
     end.status = io::run_status::failure(e.what());
+    end.stop = Stop::No;
     fmt::print(err_, "error: {}\n  what was written so far stays in {}\n", e.what(), dir_.string());
   }
   return end;
 }
 
+void Run::progress(double run_start, long start_steps) {
+  if (options_.quiet || wall() - last_print_ < 5.0) return;
+  last_print_ = wall();
+  const double rate = (pop_.steps() - start_steps) / std::max(1e-9, wall() - run_start);
+  const double eta = (numerics_.end_time - pop_.time()) / pop_.dt() / std::max(rate, 1e-9);
+  fmt::print(err_,
+             "  [{:>6.1f} s] release        t = {:.4f} s, {:.0f} steps/s, at most {:.0f} s to go, "
+             "delta_p = {:.0f} Pa, z = {:.2f} mm\n",
+             wall(), pop_.time(), rate, eta, pop_.gas().delta_p(), 1e3 * pop_.container().z);
+}
+
 int Run::pause() {
-  summary_["status"] = fmt::format("paused at t = {:.6g} s; continue with snapjump run --resume {}",
-                                   pop_.time(), dir_.string());
+  summary_["status"] = fmt::format("{} at t = {:.6g} s; continue with {}", io::run_status::kPaused,
+                                   pop_.time(), resume_command(dir_));
   write_json_file(dir_ / "summary.json", summary_);
   fmt::print(out_, "  status      {}\n", summary_["status"].get<std::string>());
   return kExitOk;
+}
+
+int Run::interrupt() {
+  summary_["status"] = fmt::format("{} at t = {:.6g} s; continue with {}",
+                                   io::run_status::kInterrupted, pop_.time(), resume_command(dir_));
+  write_json_file(dir_ / "summary.json", summary_);
+  fmt::print(out_,
+             "  status      {}\n  stopped     at t = {:.6g} s after the release, step {}; "
+             "checkpoint.bin holds the run there\n  resume      {}\n",
+             summary_["status"].get<std::string>(), pop_.time(), pop_.steps(),
+             resume_command(dir_));
+  return kExitInterrupted;
 }
 
 int Run::finish(const std::string& status) {
@@ -500,6 +652,10 @@ int Run::finish(const std::string& status) {
   summary_["wall_time"] = wall();
   summary_["steps"] = pop_.steps();
   const auto analysis = write_results(dir_, summary_, c_, series_, status, out_);
+  if (io::run_status::capped(status)) {
+    fmt::print(out_, "  continue    {} --end-time {:.4g}s goes on from the cap\n",
+               resume_command(dir_), 2.0 * numerics_.end_time);
+  }
   fmt::print(out_, "  files       {}/series.csv, summary.json, run.pvd ({} snapshots)\n",
              dir_.string(), pvd_.size());
   // The figures a reader looks at first: the Fig. 2(a) panels and cross-sections of the shell
@@ -549,15 +705,19 @@ std::string describe_folder(const fs::path& dir) {
   return where;
 }
 
+// dir/case.toml: the case, a designer's mesh named by its copy in the folder (shell.msh).
+void write_case_file(const fs::path& dir, config::Case c) {
+  if (!c.shell.mesh.empty()) c.shell.mesh = "shell.msh";
+  io::write_file_atomically(dir / "case.toml", config::to_toml(c));
+}
+
 // A new run's folder gets the case (and a designer's mesh, so that a resume or a rerun does not
 // depend on a file that may change or move; case.toml names the copy) and a first summary.
 void write_case(const fs::path& dir, const config::Case& c, const nlohmann::json& summary) {
-  auto written = c;
   if (!c.shell.mesh.empty()) {
     fs::copy_file(c.shell.mesh, dir / "shell.msh", fs::copy_options::overwrite_existing);
-    written.shell.mesh = "shell.msh";
   }
-  io::write_file_atomically(dir / "case.toml", config::to_toml(written));
+  write_case_file(dir, c);
   write_json_file(dir / "summary.json", summary);
 }
 
@@ -577,6 +737,12 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     }
     c = config::load_case_file(dir / "case.toml");
   }
+  if (options.end_time) {
+    if (!(*options.end_time > 0.0 && std::isfinite(*options.end_time))) {
+      throw config::CaseError(fmt::format("--end-time {} s: must be positive", *options.end_time));
+    }
+    c.numerics.end_time = *options.end_time;
+  }
   popper::check_simulable(c);
   const auto numerics = popper::resolve_numerics(c);
   if (!resuming) dir = make_output_folder(c, options.output);
@@ -591,19 +757,52 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     Run run(c, numerics, dir, options, summary, out, err);
     if (resuming) {
       run.resume();
+      // The new cap, for a later resume of this one.
+      if (options.end_time) write_case_file(dir, c);
     } else if (!run.prepare_and_release()) {
       return kExitOk;
     }
     const auto end = run.go_to_the_apex();
-    return end.paused ? run.pause() : run.finish(end.status);
+    switch (end.stop) {
+      case Run::Stop::Pause:
+        return run.pause();
+      case Run::Stop::Interrupt:
+        return run.interrupt();
+      case Run::Stop::No:
+        break;
+    }
+    return run.finish(end.status);
   } catch (const ResumeRefused&) {
     throw;  // nothing was changed: the summary keeps its status
+  } catch (const StoppedInThePreparation& e) {
+    summary["status"] = e.what();
+    write_json_file(dir / "summary.json", summary);
+    fmt::print(out, "  status      {}\n", e.what());
+    return kExitInterrupted;
   } catch (const std::exception& e) {
     // Whatever stopped the run, its summary says so (a sweep reads "running" as alive).
     record_failure(dir, e.what());
     throw;
   }
 }
+
+SigintStop::SigintStop() {
+  g_sigint = 0;
+  // A process started with SIGINT ignored (a background job of a script) keeps it ignored.
+  if (::sigaction(SIGINT, nullptr, &previous_) != 0 || previous_.sa_handler == SIG_IGN) return;
+  struct sigaction action {};
+  action.sa_handler = note_sigint;
+  sigemptyset(&action.sa_mask);
+  // SA_RESETHAND: a second Ctrl-C, while the run writes its checkpoint, say, ends the process.
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  installed_ = ::sigaction(SIGINT, &action, &previous_) == 0;
+}
+
+SigintStop::~SigintStop() {
+  if (installed_) ::sigaction(SIGINT, &previous_, nullptr);
+}
+
+bool SigintStop::requested() const { return g_sigint != 0; }
 
 int reanalyze_run(const std::filesystem::path& dir, std::ostream& out) {
   for (const char* name : {"case.toml", "summary.json", "series.csv"}) {

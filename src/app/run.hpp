@@ -1,6 +1,8 @@
 // `snapjump run`: the simulated experiment of one popper, into a new output folder.
 #pragma once
 
+#include <signal.h>
+
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -18,12 +20,32 @@ struct RunOptions {
   std::optional<double> pause_at;
   // Continue the run in this folder from its checkpoint (the case comes from its case.toml).
   std::string resume;
+  // With resume: the run's new cap on simulated time [s] (--end-time), written into its
+  // case.toml; a run that went to its cap goes on from there to this one or to the apex.
+  std::optional<double> end_time;
   // For tests of crash safety: on resume, fail (throw) after rewriting this many rows of the
   // series, as a run killed in the middle of the rewrite would stop.
   std::optional<std::size_t> fault_after_rewritten_rows;
-  // Asked a few times a second: true stops the run (after the release with a checkpoint and the
-  // status "paused", to resume; during the preparation with an error).
+  // Asked a few times a second: true stops the run with the status "interrupted" and the exit
+  // status kExitInterrupted (after the release with a checkpoint, to resume; during the
+  // preparation with nothing to resume).
   std::function<bool()> stop_requested;
+};
+
+// Ctrl-C for a run: while one lives, SIGINT only sets a flag that requested() reads, which the
+// run's stop_requested asks; the handler before it comes back when it is destroyed. A second
+// SIGINT ends the process as the default action does (the handler is reset once it has run).
+class SigintStop {
+ public:
+  SigintStop();
+  ~SigintStop();
+  SigintStop(const SigintStop&) = delete;
+  SigintStop& operator=(const SigintStop&) = delete;
+  [[nodiscard]] bool requested() const;
+
+ private:
+  struct sigaction previous_ {};
+  bool installed_ = false;
 };
 
 // Runs the protocol (buckle, set, ground, release) and writes series.csv, summary.json,

@@ -74,8 +74,10 @@ constexpr KeySpec kKeys[] = {
      "absent; build/cfl_scan coarse mpm finds 0.6 stable and 0.7 not)",
      nullptr, +[](Case& c) { return &c.numerics.time_step_factor; }},
     {"numerics", "end_time", "end-time", Dimension::Time, false, std::nullopt, "", "0.5 s",
-     "simulated time after release (until the apex of the flight when absent)", nullptr,
-     +[](Case& c) { return &c.numerics.end_time; }},
+     "cap on the simulated time after the release: the run ends at the apex of the flight, at "
+     "the latest here (a cap from the case when absent: docs/popper.md); with --resume, a later "
+     "cap to continue a run that went to its own",
+     nullptr, +[](Case& c) { return &c.numerics.end_time; }},
 };
 
 // Keys that are not scalar quantities.

@@ -122,7 +122,9 @@ struct Numerics {
   // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
   // 1, fine 2; axisymmetric: 2, 4, 8).
   std::optional<int> elements_through_thickness;
-  std::optional<double> end_time;  // [s]; until the apex of the flight when absent
+  // [s] after the release: the cap on a run, which ends at the apex of the flight at the latest
+  // here; popper::default_end when absent.
+  std::optional<double> end_time;
   // 3D elastic time step factor; popper::kTimeStepFactor when absent.
   std::optional<double> time_step_factor;
 };

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "measure/analysis.hpp"
@@ -51,11 +52,29 @@ Numerics resolve_numerics(const config::Case& c) {
   n.dx = c.numerics.grid_spacing.value_or(
       c.shell.h / config::preset(c.numerics.resolution).grid_cells_per_thickness);
   n.dx = std::min(n.dx, n.cap.element_size);
-  if (c.numerics.end_time) n.end_time = *c.numerics.end_time;
+  n.end_time = c.numerics.end_time ? *c.numerics.end_time : default_end(c).cap;
   n.time_step_factor = c.numerics.time_step_factor.value_or(kTimeStepFactor);
   // Damping of the preparation phases: a third of the shell's membrane frequency sqrt(E/rho)/R.
   n.prep_damping = 0.3 * std::sqrt(c.material.E / c.material.rho) / c.shell.R;
   return n;
+}
+
+DefaultEnd default_end(const config::Case& c) {
+  DefaultEnd d;
+  const double dp = theory::jump_pressure(c);
+  const double cavity = theory::cavity_volume(c.shell.R, c.shell.h, c.shell.phi);
+  const double share = 2.0 * cavity / (c.gas.container_volume + cavity);
+  const double a = c.gas.alpha_n * dp, b = c.gas.beta_n * dp;
+  // The positive root of b t + a t^2 / 2 = share, in the form that stays exact for small a.
+  d.refill = dp > 0.0 ? 2.0 * share / (b + std::sqrt(b * b + 2.0 * a * share))
+                      : std::numeric_limits<double>::infinity();
+  const auto p = theory::predict(c, theory::contact_constants());
+  d.height = p.H.hi;
+  const double mg = c.popper.net_weight;
+  if (d.height > 0.0 && mg > 0.0) d.rise = std::sqrt(2.0 * d.height * c.popper.moving_mass() / mg);
+  d.cap = kRefillsBeforeTheCap * d.refill + 2.0 * d.rise;
+  if (!(d.cap < kLongestDefaultEnd)) d.cap = kLongestDefaultEnd;  // also where it is not finite
+  return d;
 }
 
 bool FlightWatch::apex_reached(const Sample& s) {

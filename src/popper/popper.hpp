@@ -40,12 +40,37 @@ struct Numerics {
   double probe_interval = 1e-4;                 // [s] between samples of the time series
   double snapshot_interval = 5e-3;              // [s] between VTU snapshots
   double checkpoint_interval = 0.02;            // [s] between checkpoints of a run
-  double end_time = 0.8;      // [s] after release, unless the flight's apex comes first
+  // [s] after the release: the run ends at the apex of the flight, at the latest here (the
+  // case's numerics.end_time, or default_end(case).cap).
+  double end_time = 0.0;
   double prep_damping = 0.0;  // [1/s] mass-proportional damping of phases 1-3
 };
 // Also reads and places a designer's mesh (shell.mesh), once: throws mesh::MeshError for a defect
 // and config::CaseError for a mesh with the axisymmetric model.
 Numerics resolve_numerics(const config::Case& c);
+
+// The cap on a run's simulated time when the case sets none (numerics.end_time). The run ends at
+// the apex of the flight; what can come before it is the ring stage, whose length the air coming
+// in sets (the theory's t_c, tens of milliseconds, is the snap's), and the flight. So the cap is
+//   cap = kRefillsBeforeTheCap * refill + 2 * rise, at most kLongestDefaultEnd:
+// refill: the valve's time, at the release's suction delta_p_j held, to let in the air of twice
+// the cavity (what the inverted shell took from the container and gives back as it everts),
+//   beta_n delta_p_j t + alpha_n delta_p_j t^2 / 2 = 2 V_cavity / V^0;
+// rise: from the launch to the apex of the theory's highest H, the net weight mg decelerating the
+// moving mass M (popper and counterweight): sqrt(2 H M / (m g)). The runs on record snap 1.1
+// ((R, h) = (30, 2) mm) to 1.5 ((30, 1) mm) refills after the release, and their flights from
+// the launch to the apex take less than one rise: four refills and two rises leave a margin of
+// two and more.
+struct DefaultEnd {
+  double refill = 0.0;  // [s]
+  double rise = 0.0;    // [s]
+  double height = 0.0;  // the theory's highest H [m]
+  double cap = 0.0;     // [s]
+};
+inline constexpr double kRefillsBeforeTheCap = 4.0;
+// Bounds the cap where the formula has none (no suction at the release: nothing to refill).
+inline constexpr double kLongestDefaultEnd = 60.0;  // [s]
+DefaultEnd default_end(const config::Case& c);
 
 // What the simulator needs beyond a valid case (nu < 1/2). Throws config::CaseError.
 void check_simulable(const config::Case& c);

@@ -1,13 +1,18 @@
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -649,6 +654,130 @@ TEST(Cli, ASweepRefusedForItsFolderLeavesNoLockFile) {
     EXPECT_FALSE(fs::exists(fs::symlink_status("/sweep.lock")));
   }
   fs::remove_all(base);
+}
+
+}  // namespace
+}  // namespace snapjump::app
+
+namespace snapjump::app {
+namespace {
+
+nlohmann::json summary_of(const std::filesystem::path& dir) {
+  return nlohmann::json::parse(text_of(dir / "summary.json"));
+}
+
+// The coarse axisymmetric default popper, in the ring stage: ends made short for tests.
+std::vector<std::string> short_run(const std::filesystem::path& dir, const std::string& end) {
+  return {"run",        "--model", "axisymmetric", "--resolution", "coarse", "--quiet",
+          "--end-time", end,       "--output",     dir.string()};
+}
+
+// One run straight to 60 ms, for the runs below to be compared with (made once).
+const std::filesystem::path& straight_60ms() {
+  static const std::filesystem::path dir = [] {
+    const auto d = own_folder("snapjump_cli_end_straight");
+    const auto r = run(short_run(d, "60ms"));
+    EXPECT_EQ(r.code, kExitOk) << r.err;
+    return d;
+  }();
+  return dir;
+}
+
+// A run stopped by its cap says so and gives its heights as lower bounds; a resume with a later
+// cap goes on from there, and the series is the one a run straight to that cap writes.
+TEST(RunEnd, ACappedRunSaysSoAndALaterCapContinuesIt) {
+  const auto& straight = straight_60ms();
+  const auto dir = own_folder("snapjump_cli_end_capped");
+  const auto capped = run(short_run(dir, "30ms"));
+  ASSERT_EQ(capped.code, kExitOk) << capped.err;
+  EXPECT_NE(capped.out.find("status      capped at 0.03 s before the apex of the flight"),
+            std::string::npos)
+      << capped.out;
+  EXPECT_NE(capped.out.find("H and H_s are lower bounds"), std::string::npos) << capped.out;
+  const auto at = capped.out.find("H   jump height");
+  ASSERT_NE(at, std::string::npos) << capped.out;
+  const auto h_line = capped.out.substr(at, capped.out.find('\n', at) - at);
+  EXPECT_NE(h_line.find(">= "), std::string::npos) << h_line;
+  auto summary = summary_of(dir);
+  EXPECT_EQ(summary["status"].get<std::string>().rfind("capped at 0.03 s", 0), 0U);
+  EXPECT_EQ(summary["measured"]["quantities"]["H"]["lower_bound"], true);
+  EXPECT_EQ(summary["measured"]["quantities"]["H_s"]["lower_bound"], true);
+  EXPECT_NE(summary["measured"]["warnings"].dump().find("lower bounds"), std::string::npos);
+
+  // Nothing to continue to without a later cap; the run stays as it was.
+  const auto same = run({"run", "--resume", dir.string(), "--quiet"});
+  EXPECT_EQ(same.code, kExitBadInput);
+  EXPECT_NE(same.err.find("--end-time"), std::string::npos) << same.err;
+  const auto earlier = run({"run", "--resume", dir.string(), "--quiet", "--end-time", "20ms"});
+  EXPECT_EQ(earlier.code, kExitBadInput);
+  EXPECT_NE(earlier.err.find("has reached t = 0.03"), std::string::npos) << earlier.err;
+  EXPECT_EQ(summary_of(dir)["status"], summary["status"]);
+
+  const auto later = run({"run", "--resume", dir.string(), "--quiet", "--end-time", "60ms"});
+  ASSERT_EQ(later.code, kExitOk) << later.err;
+  EXPECT_EQ(summary_of(dir)["status"].get<std::string>().rfind("capped at 0.06 s", 0), 0U);
+  EXPECT_EQ(text_of(dir / "series.csv"), text_of(straight / "series.csv"));
+  EXPECT_EQ(text_of(dir / "run.pvd"), text_of(straight / "run.pvd"));
+  // The new cap is the run's own now: a later resume goes to it.
+  const auto kept = config::load_case_file(dir / "case.toml");
+  ASSERT_TRUE(kept.numerics.end_time.has_value());
+  EXPECT_DOUBLE_EQ(*kept.numerics.end_time, 0.06);
+}
+
+// Ctrl-C: SIGINT to a `snapjump run` past its release leaves a checkpoint and the status
+// "interrupted" with the command that resumes it, and the process ends with 130. The run, given
+// no end time, states the cap it has from the case; resumed with a cap of its own, its series is
+// the one a run straight to that cap writes.
+TEST(RunEnd, SigintLeavesAnInterruptedRunThatResumes) {
+  const auto& straight = straight_60ms();
+  // The command line's binary, built beside this one.
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "snapjump";
+  ASSERT_TRUE(std::filesystem::exists(exe)) << exe << ": build the snapjump target";
+  const auto base = own_folder("snapjump_cli_end_sigint");
+  const auto dir = base / "run", log = base / "log.txt";
+  std::vector<std::string> words = {exe.string(),   "run",          "--model",
+                                    "axisymmetric", "--resolution", "coarse",
+                                    "--quiet",      "--output",     dir.string()};
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {  // only async-signal-safe calls up to the exec
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::signal(SIGINT, SIG_DFL);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  // The release has come when the series exists.
+  const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(5);
+  while (!std::filesystem::exists(dir / "series.csv") && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status)) << text_of(log);
+  EXPECT_EQ(WEXITSTATUS(status), kExitInterrupted) << text_of(log);
+  const auto summary = summary_of(dir);
+  const auto said = summary["status"].get<std::string>();
+  EXPECT_EQ(said.rfind("interrupted at t = ", 0), 0U) << said;
+  EXPECT_NE(said.find("continue with snapjump run --resume " + dir.string()), std::string::npos)
+      << said;
+  EXPECT_NE(text_of(log).find("resume      snapjump run --resume " + dir.string()),
+            std::string::npos)
+      << text_of(log);
+  EXPECT_TRUE(std::filesystem::exists(dir / "checkpoint.bin"));
+  EXPECT_NE(text_of(log).find("end         the apex of the flight, at most"), std::string::npos)
+      << text_of(log);
+  // The default popper's apex comes 0.69 s after the release (docs/popper.md).
+  EXPECT_GT(summary["numerics"]["end_time"].get<double>(), 2.0 * 0.69) << summary.dump(2);
+  EXPECT_EQ(summary["end"]["cap_from"], "default");
+
+  const auto resumed = run({"run", "--resume", dir.string(), "--quiet", "--end-time", "60ms"});
+  ASSERT_EQ(resumed.code, kExitOk) << resumed.err;
+  EXPECT_EQ(text_of(dir / "series.csv"), text_of(straight / "series.csv"));
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include "config/case.hpp"
 #include "popper/popper.hpp"
+#include "theory/scaling.hpp"
 
 namespace snapjump::popper {
 namespace {
@@ -20,6 +21,39 @@ TEST(Numerics, EachModelHasItsOwnBulkIntegrationUnlessTheCaseSetsOne) {
   c.numerics.model = config::Model::ThreeD;
   c.numerics.bulk_integration = config::BulkIntegration::Reduced;
   EXPECT_TRUE(resolve_numerics(c).reduced_bulk);
+}
+
+// Without numerics.end_time a run goes to the apex of its flight, capped well past the apexes on
+// record: the default popper's comes 0.69 s after the release (coarse axisymmetric), and the
+// (30, 1.0) mm shell at 0.08 N still rises 1.6 s after it (docs/popper.md). A cap the case sets
+// is the cap.
+TEST(Numerics, TheDefaultCapLiesWellPastTheApexesOnRecord) {
+  auto c = config::default_case();
+  EXPECT_GT(resolve_numerics(c).end_time, 2.0 * 0.69);
+  auto thin = c;
+  thin.shell.h = 1e-3;
+  thin.popper.net_weight = 0.08;
+  EXPECT_GT(resolve_numerics(thin).end_time, 2.0 * 1.6);
+  c.numerics.end_time = 0.3;
+  EXPECT_EQ(resolve_numerics(c).end_time, 0.3);
+}
+
+// The cap's parts: the refill solves the valve law at delta_p_j for twice the cavity's share of
+// the gas; without suction at the release the cap is the longest one.
+TEST(Numerics, TheDefaultCapIsRefillsAndRises) {
+  const auto c = config::default_case();
+  const auto d = default_end(c);
+  EXPECT_DOUBLE_EQ(d.cap, kRefillsBeforeTheCap * d.refill + 2.0 * d.rise);
+  const double dp = theory::jump_pressure(c);
+  const double cavity = theory::cavity_volume(c.shell.R, c.shell.h, c.shell.phi);
+  const double t = d.refill;
+  EXPECT_NEAR(c.gas.beta_n * dp * t + 0.5 * c.gas.alpha_n * dp * t * t,
+              2.0 * cavity / (c.gas.container_volume + cavity), 1e-12);
+  EXPECT_NEAR(d.rise * d.rise * c.popper.net_weight / c.popper.moving_mass(), 2.0 * d.height,
+              1e-12);
+  auto none = c;
+  none.protocol.delta_p_j = 0.0;
+  EXPECT_EQ(default_end(none).cap, kLongestDefaultEnd);
 }
 
 // The presets' grid and axisymmetric elements come from the one table, config::preset.

@@ -100,7 +100,7 @@ def test_a_short_run_in_process_with_progress_and_arrays(tmp_path):
     t = r["series"]["t"]
     assert isinstance(t, np.ndarray) and t[0] == 0.0 and t[-1] == pytest.approx(5e-3, abs=2e-4)
     assert np.all(np.diff(t) > 0)
-    assert r["summary"]["status"].startswith("completed")
+    assert r["summary"]["status"].startswith("capped at 0.005 s")
     assert any(line.strip().startswith("prepared") for line in lines)
     with pytest.raises(snapjump.InputError, match="not a snapjump run folder"):
         snapjump.read_run(tmp_path)
@@ -135,8 +135,12 @@ def test_ctrl_c_stops_a_run_that_can_be_resumed(tmp_path):
         snapjump.run(model="axisymmetric", resolution="coarse", end_time="40 ms", output=folder,
                      progress=interrupt_once_prepared)
     summary = snapjump.read_run(folder)["summary"]
-    assert summary["status"].startswith("paused")
+    assert summary["status"].startswith("interrupted")
     snapjump.run(resume=folder)
     r = snapjump.read_run(folder)
-    assert r["summary"]["status"].startswith("completed")
+    assert r["summary"]["status"].startswith("capped at 0.04 s")
     assert r["series"]["t"][-1] == pytest.approx(40e-3, abs=2e-4)
+    snapjump.run(resume=folder, end_time="50 ms")  # a later cap continues it
+    r = snapjump.read_run(folder)
+    assert r["summary"]["status"].startswith("capped at 0.05 s")
+    assert r["series"]["t"][-1] == pytest.approx(50e-3, abs=2e-4)

@@ -20,7 +20,7 @@ grep -q "over 2 MPI processes" "$work/first.txt"
 grep -q "^rank 0: run-000. finished" "$work/first.txt"
 grep -q "^rank 1: run-000. finished" "$work/first.txt"
 table="$work/tiny-out/sweep.csv"
-[ "$(grep -c '^run-000[01],completed,' "$table")" -eq 2 ] || { cat "$table"; exit 1; }
+[ "$(grep -c -E '^run-000[01],capped at 0.001 s ' "$table")" -eq 2 ] || { cat "$table"; exit 1; }
 "$mpiexec" "${flags[@]}" "$exe" sweep "$work/tiny.toml" > "$work/second.txt" 2>&1 || {
   cat "$work/second.txt"; exit 1; }
 cat "$work/second.txt"
