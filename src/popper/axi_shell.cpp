@@ -68,7 +68,7 @@ nlohmann::json AxiShell::numerics_json() const {
 void AxiShell::start_held(double damping) {
   dynamics_.hold_rim();
   dynamics_.set_gravity(0.0);
-  dynamics_.set_damping(kAxiHeldDampingFactor * damping);
+  dynamics_.set_damping(damping);
 }
 
 std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(double dp,

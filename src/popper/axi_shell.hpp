@@ -78,12 +78,6 @@ class AxiShell final : public ShellModel {
   double rim_offset_ = 0.0;  // the grounding's shift of the whole shell
 };
 
-// Phases 1-2 (only their end state matters) run with this multiple of the protocol's damping: the
-// snap-through at 1.4 p_c, less damped, focuses on the axis and inverts the axis elements at 6
-// and 8 elements through h (measured); the inverted state at delta_p_j is the same at 2 and 4
-// (docs/axisymmetric.md).
-inline constexpr double kAxiHeldDampingFactor = 3.0;
-
 // The time step of the axisymmetric model: this fraction of the stability limit 2 / omega_max of
 // central differences, omega_max the undeformed body's highest frequency.
 inline constexpr double kAxiStabilityFraction = 0.3;

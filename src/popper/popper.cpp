@@ -144,13 +144,15 @@ Popper::Popper(const config::Case& c, const Numerics& n, const PreparationSettin
   delta_p_j_ = theory::jump_pressure(c);
   container_.mass = grounding_mass();
   const auto& st = settings_;
-  if (!(st.buckle_factor > 0.0 && st.ramp > 0.0 && st.max_wait >= 0.0 && st.progress_every > 0 &&
-        st.fast_to >= 0.0 && st.fast_to < st.buckle_factor && st.fast_ramp >= 0.0 &&
-        st.fast_ramp < st.ramp && st.onset_sample_every > 0 && st.onset_factor > 1.0 &&
-        st.reference_window[0] >= 0.0 && st.reference_window[1] > st.reference_window[0] &&
+  if (!(st.buckle_factor > 0.0 && st.held_damping > 0.0 && st.ramp > 0.0 && st.max_wait >= 0.0 &&
+        st.progress_every > 0 && st.fast_to >= 0.0 && st.fast_to < st.buckle_factor &&
+        st.fast_ramp >= 0.0 && st.fast_ramp < st.ramp && st.onset_sample_every > 0 &&
+        st.onset_factor > 1.0 && st.reference_window[0] >= 0.0 &&
+        st.reference_window[1] > st.reference_window[0] &&
         st.reference_window[1] < st.buckle_factor)) {
     throw std::invalid_argument(
-        "PreparationSettings: buckle_factor and ramp must be positive, max_wait not negative, "
+        "PreparationSettings: buckle_factor, held_damping and ramp must be positive, max_wait not "
+        "negative, "
         "fast_to from 0 to below buckle_factor, fast_ramp from 0 to below ramp, "
         "progress_every and onset_sample_every at least 1, onset_factor above 1, the reference "
         "window an interval of pressures from 0 up that ends below buckle_factor");
@@ -267,7 +269,7 @@ bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
   const auto& st = settings_;
   auto& m = *model_;
   const double p_buckle = st.buckle_factor * pc;
-  m.start_held(numerics_.prep_damping);
+  m.start_held(st.held_damping * numerics_.prep_damping);
   if (st.quasi_static) {
     gas_.hold(p_buckle);
     if (const auto qs = m.buckle_quasi_statically(p_buckle, pc)) {
