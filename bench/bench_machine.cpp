@@ -10,7 +10,7 @@
 //   BM_Region/<threads>      an empty OpenMP parallel region: what starting the threads costs
 //   BM_Barrier/<threads>     one barrier inside a running region
 // Reports the time per iteration, with bytes per second (BM_Clear) or barriers per second
-// (BM_Barrier, 10,000 barriers an iteration). docs/performance.md, "Session 15", compares these
+// (BM_Barrier, 10,000 barriers an iteration). docs/performance.md, "Threads", compares these
 // with how the step's stages scale on the same machine.
 #include <benchmark/benchmark.h>
 #include <omp.h>

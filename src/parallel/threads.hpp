@@ -11,9 +11,9 @@
 // trial's calls, not a period's). A trial that finds one thread faster by a narrow margin is
 // repeated after a sixteenth of the period (at least two trials' length): on a shared virtual
 // machine the other core is now and then taken for a few seconds, and a verdict taken then should
-// not hold for the whole period (docs/performance.md, "Session 13"). The results do not depend
-// on the choice: every parallel path of the step sums in an order fixed by the mesh and the grid,
-// not by the threads (tests Threads.*).
+// not hold for the whole period (docs/performance.md, "The thread tuner"). The results do not
+// depend on the choice: every parallel path of the step sums in an order fixed by the mesh and the
+// grid, not by the threads (tests Threads.*).
 #pragma once
 
 #include <algorithm>
