@@ -33,10 +33,27 @@
 namespace snapjump::app {
 namespace {
 
+// What the case's reader noticed (config::Case::bare_numbers, implausible), said before a command
+// works on the case: a bare number as a warning; a value outside what a popper can plausibly be
+// refused, or with `allow` a warning too.
+void say_readings(const config::Case& c, bool allow, std::ostream& err) {
+  for (const auto& w : c.bare_numbers) fmt::print(err, "warning: {}\n", w);
+  if (c.implausible.empty()) return;
+  if (allow) {
+    for (const auto& w : c.implausible) fmt::print(err, "warning: {} (allowed)\n", w);
+    return;
+  }
+  throw config::CaseError(fmt::format(
+      "the case lies outside what a popper can plausibly be (README.md, \"Plausible values\"); "
+      "--allow-implausible takes it as it is:\n  {}",
+      fmt::join(c.implausible, "\n  ")));
+}
+
 // Flags that set case keys, shared by the subcommands that read a case.
 struct CaseOptions {
   std::string case_file;
   std::map<std::string, std::string> values;  // case key -> text
+  bool allow_implausible = false;
 
   void add_to(CLI::App& cmd) {
     cmd.add_option("case", case_file,
@@ -55,9 +72,13 @@ struct CaseOptions {
           ->group(fmt::format("Case values ([{}])", k.table))
           ->type_name("VALUE");
     }
+    cmd.add_flag("--allow-implausible", allow_implausible,
+                 "take values outside what a popper can plausibly be (R or h of metres, E of "
+                 "pascals: README.md, \"Plausible values\") as they are, with a warning");
   }
 
-  [[nodiscard]] config::Case load() const {
+  // The case, its bare numbers said on err; throws config::CaseError for an implausible one.
+  [[nodiscard]] config::Case load(std::ostream& err) const {
     std::vector<config::Override> overrides;
     for (const auto& k : config::quantity_keys()) {
       const auto key = fmt::format("{}.{}", k.table, k.name);
@@ -65,8 +86,10 @@ struct CaseOptions {
         overrides.push_back({key, it->second, fmt::format("--{}", k.flag)});
       }
     }
-    if (case_file.empty()) return config::default_case(overrides);
-    return config::load_case_file(case_file, overrides);
+    auto c = case_file.empty() ? config::default_case(overrides)
+                               : config::load_case_file(case_file, overrides);
+    say_readings(c, allow_implausible, err);
+    return c;
   }
 };
 
@@ -126,19 +149,31 @@ nlohmann::json reverse_snap_json(const std::optional<popper::ReverseSnap>& r,
           {"monostable", std::isfinite(r->p_minus) ? json(r->p_minus > 0.0) : json(nullptr)}};
 }
 
-int predict(const CaseOptions& opts, const std::string& format, bool branch, std::ostream& out) {
-  const auto c = opts.load();
-  const auto p = theory::predict(c, theory::contact_constants());
-  // A valid case can still lie where the closed forms overflow or vanish (h/R of 1e-309):
-  // say which quantity, rather than print inf or nan.
+// A valid case can still lie where the closed forms overflow or vanish (h/R of 1e-309, with
+// --allow-implausible): say which quantity, rather than print inf or nan. An end the theory gives
+// no value beyond its range (NaN, Prediction::beyond_range) is not such a one.
+void check_evaluated(const config::Case& c, const theory::Prediction& p) {
+  const auto failed = [&](double v) {
+    return std::isinf(v) || (std::isnan(v) && p.beyond_range.empty());
+  };
   for (const auto& row : io::prediction_rows(p)) {
-    if (!std::isfinite(row.lo) || !std::isfinite(row.hi)) {
+    if (failed(row.lo) || failed(row.hi)) {
       throw config::CaseError(fmt::format(
           "the case gives a non-finite {} ({} .. {}): h/R = {:.3g} and E h^2 / mg = {:.3g} lie "
           "outside what the closed forms can evaluate",
           row.key, row.lo, row.hi, c.shell.h / c.shell.R,
           c.material.E * c.shell.h * c.shell.h / c.popper.net_weight));
     }
+  }
+}
+
+int predict(const CaseOptions& opts, const std::string& format, bool branch, std::ostream& out,
+            std::ostream& err) {
+  const auto c = opts.load(err);
+  const auto p = theory::predict(c, theory::contact_constants());
+  check_evaluated(c, p);
+  if (!p.beyond_range.empty()) {
+    fmt::print(err, "warning: the predicted outcome is unknown: {}\n", p.beyond_range);
   }
   std::string why = "--no-branch";
   const auto r = branch ? reverse_snap_of(c, why) : std::nullopt;
@@ -569,6 +604,47 @@ std::optional<std::string> unknown_word(CLI::App& app, int argc, const char* con
   return std::nullopt;
 }
 
+// The flags besides the case keys' that take a quantity with a unit.
+constexpr std::array<std::string_view, 4> kOtherQuantityFlags = {"pause-at", "force-threshold",
+                                                                 "force-offset", "settle-time"};
+
+bool takes_quantity(std::string_view flag) {
+  for (const auto& k : config::quantity_keys()) {
+    if (k.dimension != units::Dimension::Dimensionless && flag == k.flag) return true;
+  }
+  return std::find(kOtherQuantityFlags.begin(), kOtherQuantityFlags.end(), flag) !=
+         kOtherQuantityFlags.end();
+}
+
+// The command line with `--R 40 mm` read as `--R "40 mm"`: a bare number after a quantity's flag
+// (or in --R=40) and the word after it, when that is a unit the database knows and no file, are
+// one value. Otherwise CLI11 would take the unit for the positional argument, the case file.
+std::vector<std::string> with_units_joined(int argc, const char* const* argv) {
+  std::vector<std::string> args(argv, argv + argc);
+  std::optional<units::UnitParser> parser;  // loaded only where a word may be a unit
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string_view word = args[i];
+    if (word == "--") break;  // what follows is positional
+    if (!word.starts_with("--")) continue;
+    const auto eq = word.find('=');
+    if (!takes_quantity(word.substr(2, eq == std::string_view::npos ? eq : eq - 2))) continue;
+    const std::size_t value = eq == std::string_view::npos ? i + 1 : i;  // the number's word
+    if (value + 1 >= args.size()) continue;
+    const std::string number = eq == std::string_view::npos ? args[value] : args[i].substr(eq + 1);
+    const std::string unit = args[value + 1];
+    std::error_code ec;
+    if (!units::is_bare_number(number) || unit.starts_with("-") ||
+        std::filesystem::exists(unit, ec)) {
+      continue;
+    }
+    if (!parser) parser.emplace();
+    if (!parser->is_unit(unit)) continue;
+    args[value] += " " + unit;
+    args.erase(args.begin() + static_cast<std::ptrdiff_t>(value + 1));
+  }
+  return args;
+}
+
 // --end-time's value given with --resume [s].
 double parse_end_time(const std::string& text) {
   const units::UnitParser parser;
@@ -611,8 +687,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   predict_cmd->add_flag("--no-branch", no_branch,
                         "skip the pressure-volume branch (the closed forms only, at once)");
   predict_cmd->footer(
-      "Values take units: --R 30mm --h 2mm --E 1.2MPa --net-weight 0.48N --phi 80deg.\n"
-      "A bare number is SI (metres, pascals, radians...).");
+      "Values take units: --R 30mm --h 2mm --E 1.2MPa --net-weight 0.48N --phi 80deg (or\n"
+      "--R 30 mm). A bare number is SI (metres, pascals, radians...), with a warning; a value no\n"
+      "popper has (R of metres, E of pascals) is refused unless --allow-implausible.");
 
   auto* contact = app.add_subcommand(
       "contact",
@@ -721,23 +798,27 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   SweepCommand sweep_cmd(app);
   PlotCommand plot_cmd(app);
 
-  if (const auto unknown = unknown_word(app, argc, argv)) {
+  const auto args = with_units_joined(argc, argv);
+  std::vector<const char*> words;
+  for (const auto& a : args) words.push_back(a.c_str());
+  const int count = static_cast<int>(words.size());
+  if (const auto unknown = unknown_word(app, count, words.data())) {
     fmt::print(err, "error: {}\nRun with --help for more information.\n", *unknown);
     return kExitBadInput;
   }
   try {
-    app.parse(argc, argv);
+    app.parse(count, words.data());
   } catch (const CLI::ParseError& e) {
     const int code = app.exit(e, out, err);
     return code == 0 ? kExitOk : kExitBadInput;
   }
 
   try {
-    if (predict_cmd->parsed()) return predict(predict_opts, format, !no_branch, out);
+    if (predict_cmd->parsed()) return predict(predict_opts, format, !no_branch, out, err);
     if (contact->parsed()) return contact_cmd(contact_opts, out, err);
     if (analyze->parsed()) return analyze_cmd(analyze_opts, out, err);
     if (mesh_cmd->parsed()) {
-      auto c = mesh_case.load();
+      auto c = mesh_case.load(err);
       if (const auto r = config::parse_resolution(mesh_resolution)) c.numerics.resolution = *r;
       if (!c.shell.mesh.empty()) {
         throw config::CaseError(fmt::format(
@@ -811,7 +892,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
         }
         return run_simulation(config::Case{}, run_opts, out, err);
       }
-      auto c = run_case.load();
+      auto c = run_case.load(err);
       if (const auto r = config::parse_resolution(run_resolution)) c.numerics.resolution = *r;
       if (const auto m = config::parse_model(run_model)) c.numerics.model = *m;
       if (const auto b = config::parse_bulk_integration(run_bulk)) {

@@ -10,6 +10,9 @@ namespace snapjump::app {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1;   // the program failed (I/O, numerics)
 inline constexpr int kExitBadInput = 2;  // bad command line or case file
+// A run that ended in its preparation, before the release: the shell did not invert, or snapped
+// back before the release (summary.json's status; its hints say what to try).
+inline constexpr int kExitNotPrepared = 3;
 // A run stopped by Ctrl-C (or the stop hook), 128 + SIGINT as a shell reports a process ended
 // by the signal; past the release it can be resumed.
 inline constexpr int kExitInterrupted = 130;

@@ -28,9 +28,11 @@
 #include "io/run_status.hpp"
 #include "io/vtu.hpp"
 #include "measure/analysis.hpp"
+#include "measure/bounds_check.hpp"
 #include "measure/time_series.hpp"
 #include "plot/figures.hpp"
 #include "popper/popper.hpp"
+#include "popper/reverse_snap.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::app {
@@ -131,11 +133,14 @@ void print_numerics(std::ostream& out, const popper::Popper& pop) {
                cap);
   } else {
     const auto d = popper::default_end(c);
+    // Beyond the theory's range (theory::Prediction::beyond_range) it may give no highest H.
+    const auto height = std::isfinite(d.height) ? fmt::format("{:.3g} mm", 1e3 * d.height)
+                                                : std::string("none beyond its range");
     fmt::print(out,
                "  end         the apex of the flight, at most {:.4g} s after the release: {} x "
                "{:.3g} s, the valve's refill of the cavity at delta_p_j, + 2 x {:.3g} s, the rise "
-               "to the theory's highest H, {:.3g} mm (numerics.end_time sets another cap)\n",
-               cap, popper::kRefillsBeforeTheCap, d.refill, d.rise, 1e3 * d.height);
+               "to the theory's highest H, {} (numerics.end_time sets another cap)\n",
+               cap, popper::kRefillsBeforeTheCap, d.refill, d.rise, height);
   }
 }
 
@@ -158,6 +163,33 @@ void note_lower_bounds(measure::Analysis& a, const measure::TimeSeries& series) 
   }
 }
 
+// summary.json's comparison: each measured prefactor beside its bounds, the outcomes, and the
+// prefactors far from their bounds with their likely causes (also returned, to print).
+std::vector<measure::FarFromBounds> compare_with_theory(nlohmann::json& comparison,
+                                                        const measure::Analysis& analysis,
+                                                        const theory::Prediction& prediction) {
+  const auto compare = [&](const char* name, const std::optional<double>& v, theory::Range r) {
+    comparison[name] = {{"measured", v ? nlohmann::json(*v) : nlohmann::json(nullptr)},
+                        {"lower", r.lo},
+                        {"upper", r.hi},
+                        {"inside", v && *v >= r.lo && *v <= r.hi}};
+  };
+  compare("alpha_r", analysis.alpha_r, prediction.alpha.alpha_r);
+  compare("alpha_e", analysis.alpha_e, prediction.alpha.alpha_e);
+  compare("alpha_F", analysis.alpha_F, prediction.alpha.alpha_F);
+  compare("alpha_t", analysis.alpha_t, prediction.alpha.alpha_t);
+  comparison["outcome"] = {{"simulated", measure::outcome_text(analysis.outcome)},
+                           {"predicted", prediction.outcome_text()}};
+  auto far = measure::far_from_bounds(analysis, prediction.alpha);
+  comparison["warnings"] = nlohmann::json::array();
+  for (const auto& f : far) {
+    comparison[f.quantity]["far_from_bounds"] = {
+        {"factor", f.factor}, {"above", f.above}, {"likely_cause", f.cause}};
+    comparison["warnings"].push_back(f.text());
+  }
+  return far;
+}
+
 // Analyses the run's time series, puts the measured quantities, the theory's and their
 // comparison into the summary, writes it and prints the results.
 measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, const config::Case& c,
@@ -176,18 +208,7 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
       summary["measured"]["quantities"][key]["lower_bound"] = true;
   }
   summary["theory"] = io::to_json(c, prediction);
-  const auto compare = [&](const char* name, const std::optional<double>& v, theory::Range r) {
-    summary["comparison"][name] = {{"measured", v ? nlohmann::json(*v) : nlohmann::json(nullptr)},
-                                   {"lower", r.lo},
-                                   {"upper", r.hi},
-                                   {"inside", v && *v >= r.lo && *v <= r.hi}};
-  };
-  compare("alpha_r", analysis.alpha_r, prediction.alpha.alpha_r);
-  compare("alpha_e", analysis.alpha_e, prediction.alpha.alpha_e);
-  compare("alpha_F", analysis.alpha_F, prediction.alpha.alpha_F);
-  compare("alpha_t", analysis.alpha_t, prediction.alpha.alpha_t);
-  summary["comparison"]["outcome"] = {{"simulated", measure::outcome_text(analysis.outcome)},
-                                      {"predicted", prediction.outcome.text()}};
+  const auto far = compare_with_theory(summary["comparison"], analysis, prediction);
   write_json_file(dir / "summary.json", summary);
 
   const auto show = [&](const char* label, const std::optional<double>& v, double scale,
@@ -200,7 +221,8 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
     return fmt::format("{:.4g} .. {:.4g}", r.lo / scale, r.hi / scale);
   };
   fmt::print(out, "  status      {}\n  outcome     {} (theory: {})\n", status,
-             measure::outcome_text(analysis.outcome), prediction.outcome.text());
+             measure::outcome_text(analysis.outcome), prediction.outcome_text());
+  for (const auto& f : far) fmt::print(out, "  warning     {}\n", f.text());
   if (!analysis.undetermined.empty()) fmt::print(out, "              {}\n", analysis.undetermined);
   show("r*  contact radius", analysis.r_star, 1e-3, "mm", range(prediction.r_star, 1e-3));
   show("e*  indentation", analysis.e_star, 1e-3, "mm", range(prediction.e_star, 1e-3));
@@ -255,6 +277,89 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   }
   for (const auto& w : analysis.warnings) fmt::print(out, "  note        {}\n", w);
   return analysis;
+}
+
+// What the axisymmetric quasi-static branch of the case's cap says about the buckling suction
+// against the preparation's, buckle_factor Zoelly's p_c.
+std::string buckling_hint(const std::optional<popper::ReverseSnap>& b, const std::string& why,
+                          double pc, double buckle_factor) {
+  if (!b) return fmt::format("the axisymmetric branch's p_c could not be computed: {}", why);
+  if (!std::isfinite(b->p_c)) {
+    return fmt::format(
+        "the cap's axisymmetric quasi-static branch has no buckling maximum{}: it does not snap "
+        "under suction at all; a deeper or thinner cap does",
+        b->note.empty() ? std::string() : " (" + b->note + ")");
+  }
+  const auto at = fmt::format(
+      "the cap's axisymmetric quasi-static branch buckles at p_c = "
+      "{:.0f} Pa ({:.3g} Zoelly's p_c)",
+      b->p_c, b->p_c / pc);
+  if (b->p_c > buckle_factor * pc) {
+    return at + ", beyond the preparation's suction: a thinner or deeper cap buckles within it";
+  }
+  return at +
+         ", within the preparation's suction: the discretisation kept the shell from "
+         "inverting";
+}
+
+// What the branch says about the suction that holds the inverted shell, against delta_p_j.
+std::string holding_hint(const std::optional<popper::ReverseSnap>& b, const std::string& why,
+                         double pc, double delta_p_j) {
+  if (!b) return fmt::format("the axisymmetric branch's p_hold could not be computed: {}", why);
+  if (!std::isfinite(b->p_hold)) {
+    return fmt::format(
+        "the cap's axisymmetric quasi-static branch does not reach the fully inverted shell{}{}",
+        b->note.empty() ? "" : ": ", b->note);
+  }
+  const auto hold = fmt::format(
+      "the cap's axisymmetric quasi-static branch holds the fully inverted shell from p_hold = "
+      "{:.0f} Pa ({:.3g} p_c)",
+      b->p_hold, b->p_hold / pc);
+  if (delta_p_j < b->p_hold) {
+    return fmt::format(
+        "{}; delta_p_j = {:.0f} Pa is below it: raise --delta-p-j (or "
+        "--delta-p-j-over-pc)",
+        hold, delta_p_j);
+  }
+  return fmt::format(
+      "{}; delta_p_j = {:.0f} Pa is above it: the discretisation let the shell "
+      "snap back",
+      hold, delta_p_j);
+}
+
+// What to try after a preparation that ended the run (the shell did not invert, or snapped back
+// before the release): the suctions of the theory and of the axisymmetric branch
+// (popper::reverse_snap), a finer preset, the other model.
+std::vector<std::string> preparation_hints(const config::Case& c, const popper::Preparation& prep,
+                                           double buckle_factor, double delta_p_j) {
+  const double pc = theory::zoelly_pressure(c.material.E, c.shell.h, c.shell.R, c.material.nu);
+  std::optional<popper::ReverseSnap> branch;
+  std::string why;
+  try {
+    branch = popper::reverse_snap(c);
+  } catch (const std::exception& e) {
+    why = e.what();
+  }
+  std::vector<std::string> hints;
+  if (prep.inverted) {
+    hints.push_back(holding_hint(branch, why, pc, delta_p_j));
+  } else {
+    hints.push_back(
+        fmt::format("Zoelly's p_c of the case is {:.0f} Pa (snapjump predict); the preparation "
+                    "raised the suction to {:.3g} p_c = {:.0f} Pa",
+                    pc, buckle_factor, buckle_factor * pc));
+    hints.push_back(buckling_hint(branch, why, pc, buckle_factor));
+  }
+  const auto r = c.numerics.resolution;
+  hints.push_back(r == config::Resolution::Fine
+                      ? std::string("the finest preset is in use: numerics.element_size, "
+                                    "numerics.grid_spacing and numerics.elements_through_thickness "
+                                    "refine further")
+                      : fmt::format("a finer preset: --resolution {}",
+                                    r == config::Resolution::Coarse ? "default" : "fine"));
+  hints.push_back(fmt::format("the other model: --model {}",
+                              c.numerics.model == config::Model::ThreeD ? "axisymmetric" : "3d"));
+  return hints;
 }
 
 // A resume refused before anything was changed: the run stays as it was (not "failed").
@@ -472,8 +577,12 @@ bool Run::prepare_and_release() {
   if (!prep.held) {
     summary_["status"] =
         prep.inverted ? io::run_status::kSnappedBack : io::run_status::kDidNotInvert;
+    const auto hints =
+        preparation_hints(c_, prep, pop_.preparation_settings().buckle_factor, pop_.delta_p_j());
+    summary_["hints"] = hints;
     write_json_file(dir_ / "summary.json", summary_);
     fmt::print(out_, "  result      {}\n", summary_["status"].get<std::string>());
+    for (const auto& h : hints) fmt::print(out_, "  try         {}\n", h);
     return false;
   }
   write_json_file(dir_ / "summary.json", summary_);
@@ -760,7 +869,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
       // The new cap, for a later resume of this one.
       if (options.end_time) write_case_file(dir, c);
     } else if (!run.prepare_and_release()) {
-      return kExitOk;
+      return kExitNotPrepared;
     }
     const auto end = run.go_to_the_apex();
     switch (end.stop) {

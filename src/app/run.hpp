@@ -49,7 +49,8 @@ class SigintStop {
 };
 
 // Runs the protocol (buckle, set, ground, release) and writes series.csv, summary.json,
-// snapshots/*.vtu and run.pvd. Returns an exit status; throws config::CaseError for bad input.
+// snapshots/*.vtu and run.pvd. Returns an exit status (kExitNotPrepared when the preparation
+// ended the run, with what to try); throws config::CaseError for bad input.
 int run_simulation(const config::Case& c, const RunOptions& options, std::ostream& out,
                    std::ostream& err);
 

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "config/files.hpp"
+#include "config/plausibility.hpp"
 
 namespace snapjump::config {
 namespace {
@@ -108,7 +109,13 @@ struct Entry {
   double si = 0.0;
   std::string text;    // as the user wrote it, for messages
   std::string origin;  // "case.toml:3" or "--R"
+  bool bare = false;   // a number without a unit for a quantity that has one: read in SI
 };
+
+// Whether `text` is a bare number for k: a quantity with a unit written without one.
+bool bare(const KeySpec& k, std::string_view text) {
+  return k.dimension != Dimension::Dimensionless && units::is_bare_number(text);
+}
 
 std::string full_key(const KeySpec& k) { return fmt::format("{}.{}", k.table, k.name); }
 
@@ -183,7 +190,8 @@ class Reader {
   void apply(const Override& o) {
     const auto* k = find_quantity_key(o.key);
     if (k == nullptr) throw CaseError(fmt::format("{}: unknown case key '{}'", o.origin, o.key));
-    entries_[full_key(*k)] = Entry{convert(*k, o.text, o.origin), o.text, o.origin};
+    entries_[full_key(*k)] =
+        Entry{convert(*k, o.text, o.origin), o.text, o.origin, bare(*k, o.text)};
   }
 
   [[nodiscard]] const Entry* find(const KeySpec& k) const {
@@ -273,9 +281,12 @@ class Reader {
       }
       std::string text;
       double si = 0.0;
+      // A TOML number has no unit.
+      bool is_bare = k->dimension != Dimension::Dimensionless;
       if (const auto* s = node.as_string()) {
         text = fmt::format("\"{}\"", s->get());
         si = convert(*k, s->get(), origin);
+        is_bare = bare(*k, s->get());
       } else if (const auto* i = node.as_integer()) {
         text = fmt::format("{}", i->get());
         si = convert(*k, text, origin);
@@ -289,7 +300,7 @@ class Reader {
         fail(key.source(), fmt::format("{} must be a number or a string with a unit (e.g. \"{}\")",
                                        full_key(*k), k->example));
       }
-      entries_[full_key(*k)] = Entry{si, text, origin};
+      entries_[full_key(*k)] = Entry{si, text, origin, is_bare};
     }
   }
 
@@ -305,6 +316,34 @@ class Reader {
   const units::UnitParser& parser_;
   std::map<std::string, Entry> entries_;
 };
+
+// The value with the unit of the key's example ("40 mm" for shell.R), for hints.
+std::string with_example_unit(const KeySpec& k, double value) {
+  const auto space = k.example.find(' ');
+  return fmt::format("{:.6g} {}", value,
+                     space == std::string_view::npos ? "" : k.example.substr(space + 1));
+}
+
+// Case::bare_numbers and Case::implausible, from the values given.
+void note_readings(const Reader& r, Case& c) {
+  for (const auto& k : kKeys) {
+    const auto* e = r.find(k);
+    if (e == nullptr) continue;
+    const auto read_as = fmt::format("{:.6g} {}", e->si, units::si_unit(k.dimension));
+    const auto hint =
+        fmt::format("write its unit if another is meant, e.g. \"{}\"", with_example_unit(k, e->si));
+    const auto* range = plausible_range(full_key(k));
+    if (range != nullptr && !range->holds(e->si)) {
+      c.implausible.push_back(
+          fmt::format("{} is read as {}{}, outside {}, what {} can plausibly be: {}{}", r.where(k),
+                      read_as, e->bare ? " (a number without a unit is in SI)" : "", range->text,
+                      range->what, range->why, e->bare ? "; " + hint : ""));
+    } else if (e->bare) {
+      c.bare_numbers.push_back(
+          fmt::format("{} has no unit and is read in SI, as {}; {}", r.where(k), read_as, hint));
+    }
+  }
+}
 
 void check(bool ok, const std::string& message) {
   if (!ok) throw CaseError(message);
@@ -393,6 +432,7 @@ Case build(const Reader& r, Case c) {
                       "build/cfl_scan)",
                       r.where(spec("numerics", "time_step_factor"))));
   }
+  note_readings(r, c);
   return c;
 }
 
@@ -467,17 +507,26 @@ std::string_view default_case_text() { return kDefaultCase; }
 
 std::string to_toml(const Case& c) {
   // Written by toml++'s serializer, never by string formatting, so that any title or file name
-  // (quotes, newlines, control characters) reads back as it was. Numbers are doubles, which the
-  // serializer writes in their shortest form that reads back to the same value.
+  // (quotes, newlines, control characters) reads back as it was. A plain number is a double,
+  // which the serializer writes in its shortest form that reads back to the same value; a
+  // quantity with a unit is a string, that shortest form and the SI unit ("0.03 m"), which the
+  // unit parser converts from SI to SI, unchanged.
   // Every quantity from its field.
   std::map<std::string_view, toml::table> tables;
   Case fields = c;  // the accessors take a Case they could change: read them on a copy
+  const auto insert = [&](toml::table& t, const KeySpec& k, double v) {
+    if (k.dimension == Dimension::Dimensionless) {
+      t.insert(k.name, v);
+    } else {
+      t.insert(k.name, fmt::format("{} {}", v, units::si_unit(k.dimension)));
+    }
+  };
   for (const auto& k : kKeys) {
     auto& t = tables[k.table];
     if (k.optional_field != nullptr) {
-      if (const auto& v = *k.optional_field(fields)) t.insert(k.name, *v);
+      if (const auto& v = *k.optional_field(fields)) insert(t, k, *v);
     } else if (!replaced_by_absolute_value(k, c)) {
-      t.insert(k.name, *k.field(fields));
+      insert(t, k, *k.field(fields));
     }
   }
   auto& shell = tables["shell"];

@@ -143,6 +143,12 @@ struct Case {
   // Values given outside the file (flags, a sweep's settings): {"shell.h", "2 mm"}. The title
   // says so, so that a case file's title does not name a popper the flags have changed.
   std::vector<std::pair<std::string, std::string>> overridden;
+  // What the reader noticed in given values it accepted, for the command line to say: each number
+  // written without a unit for a quantity that has one (read in SI), and each value outside what
+  // a popper can plausibly be (config/plausibility.hpp). Each message names where the value was
+  // written, the key and what it was read as; a value outside its range is not also a bare one.
+  std::vector<std::string> bare_numbers;
+  std::vector<std::string> implausible;
 };
 
 // Bad input. what() is the whole message, naming the key and where it was written.
@@ -197,8 +203,9 @@ Case default_case(std::span<const Override> overrides = {},
 // The text of the built-in default case (the same as examples/default.toml).
 std::string_view default_case_text();
 
-// The case as a case file with every value in SI (defaults written out), so that a run can be
-// repeated or resumed exactly: parse_case(to_toml(c)) gives back the same values.
+// The case as a case file with every value in SI with its unit, "0.03 m" (defaults written out),
+// so that a run can be repeated or resumed exactly: parse_case(to_toml(c)) gives back the same
+// values.
 std::string to_toml(const Case& c);
 
 }  // namespace snapjump::config

@@ -65,6 +65,26 @@ std::string with_article(std::string_view noun) {
 
 using text::trim;
 
+// The number at the start of s (a leading '+' allowed, which from_chars does not take) and the
+// text after it; ec as from_chars gives it, rest all of s when no number was read.
+struct LeadingNumber {
+  double value = 0.0;
+  std::string_view rest;
+  std::errc ec{};
+};
+
+LeadingNumber leading_number(std::string_view s) {
+  LeadingNumber n;
+  const char* begin = s.data();
+  const char* end = s.data() + s.size();
+  if (begin != end && *begin == '+') ++begin;
+  const auto [ptr, ec] = std::from_chars(begin, end, n.value);
+  n.ec = ec;
+  const char* after = ec == std::errc() && ptr != begin ? ptr : s.data();
+  n.rest = std::string_view(after, static_cast<size_t>(end - after));
+  return n;
+}
+
 struct UnitDeleter {
   void operator()(ut_unit* u) const { ut_free(u); }
 };
@@ -170,23 +190,35 @@ double UnitParser::parse(std::string_view text, Dimension expected) const {
     throw UnitError(fmt::format("the value is empty; write a number with a unit (e.g. \"{}\")",
                                 row(expected).example));
   }
-  double value = 0.0;
-  const char* begin = s.data();
-  const char* end = s.data() + s.size();
-  if (*begin == '+') ++begin;  // from_chars does not take a leading '+'
-  const auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ec == std::errc::result_out_of_range) {
+  const auto n = leading_number(s);
+  if (n.ec == std::errc::result_out_of_range) {
     throw UnitError(fmt::format("'{}' is out of range", s));
   }
-  if (ec != std::errc() || ptr == begin) {
+  if (n.ec != std::errc() || n.rest.size() == s.size()) {
     throw UnitError(
         fmt::format("'{}' does not start with a number (e.g. \"{}\")", s, row(expected).example));
   }
-  if (!std::isfinite(value)) throw UnitError(fmt::format("'{}' is not a finite number", s));
-  const double si =
-      impl_->to_si(value, std::string_view(ptr, static_cast<size_t>(end - ptr)), expected);
+  if (!std::isfinite(n.value)) throw UnitError(fmt::format("'{}' is not a finite number", s));
+  const double si = impl_->to_si(n.value, n.rest, expected);
   if (!std::isfinite(si)) throw UnitError(fmt::format("'{}' is not a finite number", s));
   return si;
+}
+
+bool is_bare_number(std::string_view text) {
+  const auto s = trim(text);
+  const auto n = leading_number(s);
+  return !s.empty() && n.ec == std::errc() && n.rest.size() < s.size() && trim(n.rest).empty();
+}
+
+bool UnitParser::is_unit(std::string_view text) const {
+  const auto s = trim(text);
+  if (s.empty()) return false;
+  try {
+    (void)impl_->parse_unit(s);
+    return true;
+  } catch (const UnitError&) {
+    return false;
+  }
 }
 
 double UnitParser::to_si(double value, std::string_view unit, Dimension expected) const {

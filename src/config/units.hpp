@@ -37,6 +37,9 @@ std::string_view si_unit(Dimension d);
 // A sample value with a unit, for error messages ("30 mm").
 std::string_view example(Dimension d);
 
+// True when text is a number alone, without a unit ("40", " 4e-2 "): parse() reads it in SI.
+bool is_bare_number(std::string_view text);
+
 // A value that could not be understood. The message does not name the key: the caller adds it.
 class UnitError : public InputError {
  public:
@@ -62,6 +65,9 @@ class UnitParser {
 
   // SI value -> value in `unit` (for printing in convenient units). Throws UnitError.
   [[nodiscard]] double from_si(double value_si, std::string_view unit, Dimension d) const;
+
+  // Whether the database knows `text` as a unit, of any dimension ("mm", "kPa", "kg/m^3").
+  [[nodiscard]] bool is_unit(std::string_view text) const;
 
  private:
   struct Impl;

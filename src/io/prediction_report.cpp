@@ -7,6 +7,8 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "io/csv.hpp"
+
 namespace snapjump::io {
 namespace {
 
@@ -22,7 +24,9 @@ ReportRow range(std::string group, std::string key, std::string label, theory::R
           std::move(si_unit), std::move(unit), unit_si};
 }
 
+// NaN is an end the theory gives no value for (theory::Prediction::beyond_range).
 std::string number(double v) {
+  if (std::isnan(v)) return "-";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return fmt::format("{:.4g}", v);
 }
@@ -120,12 +124,14 @@ void write_table(std::ostream& out, const config::Case& c, const theory::Predict
     const auto hi = r.exact() ? std::string() : number(r.hi / r.unit_si);
     fmt::print(out, "  {:<42} {:>11} {:>11}  {}\n", r.label, lo, hi, r.unit);
   }
-  fmt::print(out, "\npredicted outcome: {}\n", p.outcome.text());
+  fmt::print(out, "\npredicted outcome: {}\n", p.outcome_text());
   fmt::print(out, "  Jump needs F* > mg:          F*/mg = {} .. {}\n", number(p.jump_margin.lo),
              number(p.jump_margin.hi));
   fmt::print(out, "  No snap when U < mg H_l:     U/(mg H_l) = {} .. {}\n",
              number(p.snap_margin.lo), number(p.snap_margin.hi));
-  if (!p.outcome.certain()) {
+  if (!p.beyond_range.empty()) {
+    fmt::print(out, "  (- : no value beyond the theory's range)\n");
+  } else if (!p.outcome.certain()) {
     fmt::print(out, "  (more than one outcome lies within the prefactor bounds)\n");
   }
 }
@@ -157,7 +163,7 @@ nlohmann::json case_to_json(const config::Case& c) {
 
 nlohmann::json to_json(const config::Case& c, const theory::Prediction& p) {
   using nlohmann::json;
-  // Infinite margins (no lift needed) become null: JSON has no infinity.
+  // An end without a value (NaN, beyond the theory's range) becomes null.
   const auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json quantities = json::object();
   for (const auto& r : prediction_rows(p)) {
@@ -168,8 +174,13 @@ nlohmann::json to_json(const config::Case& c, const theory::Prediction& p) {
   if (p.outcome.snap) outcome.push_back("Snap");
   if (p.outcome.no_snap) outcome.push_back("No snap");
   const json doc = {
-      {"case", case_to_json(c)},  {"units", "SI"},      {"constants_source", p.constants_source},
-      {"quantities", quantities}, {"outcome", outcome}, {"outcome_text", p.outcome.text()},
+      {"case", case_to_json(c)},
+      {"units", "SI"},
+      {"constants_source", p.constants_source},
+      {"quantities", quantities},
+      {"outcome", outcome},
+      {"outcome_text", p.outcome_text()},
+      {"beyond_range", p.beyond_range.empty() ? json(nullptr) : json(p.beyond_range)},
   };
   return doc;
 }
@@ -180,10 +191,14 @@ void write_json(std::ostream& out, const config::Case& c, const theory::Predicti
 
 void write_csv(std::ostream& out, const theory::Prediction& p) {
   out << "quantity,lower,upper,unit\n";
+  // An end without a value (beyond the theory's range) is an empty cell.
+  const auto cell = [](double v) {
+    return std::isnan(v) ? std::string() : fmt::format("{:.10g}", v);
+  };
   for (const auto& r : prediction_rows(p)) {
-    fmt::print(out, "{},{:.10g},{:.10g},{}\n", r.key, r.lo, r.hi, r.si_unit);
+    fmt::print(out, "{},{},{},{}\n", r.key, cell(r.lo), cell(r.hi), r.si_unit);
   }
-  fmt::print(out, "outcome,{},,\n", p.outcome.text());
+  fmt::print(out, "outcome,{},,\n", csv_field(p.outcome_text()));
 }
 
 }  // namespace snapjump::io

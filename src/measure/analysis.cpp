@@ -11,6 +11,8 @@
 #include <span>
 #include <vector>
 
+#include "config/plausibility.hpp"
+
 namespace snapjump::measure {
 namespace {
 
@@ -454,9 +456,6 @@ const Flight* thrown_flight(const std::vector<Flight>& flights,
 
 // A sustained negative force below this fraction of F's range (or the noise) says F's zero is off.
 constexpr double kTareFraction = 0.05;
-// Shell radii outside this range are not a popper's [m]: a bare number taken as metres.
-constexpr double kLargestPlausibleR = 1.0;
-constexpr double kSmallestPlausibleR = 1e-4;
 
 // No onset in the whole record: No snap is settled when the record covers the experiment
 // (options.complete) or goes on for settle_time after delta_p has come down to zero (the paper's
@@ -645,11 +644,12 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options, const
   for (const auto& note : series.notes()) a.warnings.push_back(fmt::format("reading: {}", note));
   a.R = options.R;
   if (!a.R && c != nullptr && c->shell.R > 0.0) a.R = c->shell.R;
-  if (a.R && (*a.R >= kLargestPlausibleR || *a.R < kSmallestPlausibleR)) {
+  // A radius outside a popper's is most likely a bare number taken as metres.
+  if (const auto* range = config::plausible_range("shell.R"); a.R && !range->holds(*a.R)) {
     a.warnings.push_back(fmt::format(
-        "R = {:.6g} m is not the radius of a popper's shell (a bare number is read in SI units, "
-        "metres: 30 means 30 m; write \"30 mm\")",
-        *a.R));
+        "R = {:.6g} m is not the radius of a popper's shell (that lies within {}): a bare number "
+        "is read in SI units, metres: 30 means 30 m; write \"30 mm\"",
+        *a.R, range->text));
   }
   const auto t = series.time();
   const auto F = series.column(kForce);

@@ -586,7 +586,7 @@ int write_table(const Spec& spec, const fs::path& csv) {
     if (summary && summary->contains("measured")) m = &(*summary)["measured"];
     const auto [outcome, why] = outcome_of(m, status);
     if (outcome != kUndetermined) ++with_result;
-    std::vector<std::string> row = {r.name, status, outcome, pred.outcome.text()};
+    std::vector<std::string> row = {r.name, status, outcome, pred.outcome_text()};
     for (std::size_t k = 0; k < r.settings.size(); ++k) {
       const auto& s = r.settings[k];
       row.push_back(varied[k] ? num(parser.parse(s.text, varied[k]->dimension)) : s.text);

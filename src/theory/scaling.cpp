@@ -1,5 +1,7 @@
 #include "theory/scaling.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -87,6 +89,24 @@ double jump_pressure(const config::Case& c) {
          zoelly_pressure(c.material.E, c.shell.h, c.shell.R, c.material.nu);
 }
 
+namespace {
+
+// Why the case lies beyond the contact theory, whose plate indents the cap by less than its
+// depth, when e* = alpha_e h can reach the depth R (1 - cos phi) and H_l has no lower end (h / R
+// above (1 - cos phi) / alpha_e at the upper bound); empty where H_l has both.
+std::string depth_exceeded(const Prediction& p, double h_over_R, double phi) {
+  if (!std::isnan(p.H_l.lo)) return {};
+  return fmt::format(
+      "the indentation at the onset, e* = alpha_e h, reaches {:.3g} mm, past the cap's depth "
+      "R (1 - cos phi) = {:.3g} mm: the contact theory holds while the plate indents the cap by "
+      "less than its depth (at phi = {:.3g} deg for h / R below {:.3g}; this case has {:.3g}), so "
+      "H_l = depth - e*, H and U / (mg H_l) have no value there",
+      1e3 * p.e_star.hi, 1e3 * p.cap_depth, phi * 180.0 / std::numbers::pi,
+      h_over_R * p.cap_depth / p.e_star.hi, h_over_R);
+}
+
+}  // namespace
+
 Prediction predict(const config::Case& c, const ContactConstants& constants) {
   const double R = c.shell.R, h = c.shell.h, phi = c.shell.phi;
   const double E = c.material.E, nu = c.material.nu;
@@ -115,21 +135,25 @@ Prediction predict(const config::Case& c, const ContactConstants& constants) {
   p.e_star = {a.alpha_e.lo * p.e_c, a.alpha_e.hi * p.e_c};
   p.F_star = {a.alpha_F.lo * p.F_c, a.alpha_F.hi * p.F_c};
   p.t_star = {a.alpha_t.lo * p.t_c, a.alpha_t.hi * p.t_c};
-  // H_l falls and H_s rises with the prefactors; each end takes the extremes independently.
-  p.H_l = {lifting_height(R, phi, h, a.alpha_e.hi), lifting_height(R, phi, h, a.alpha_e.lo)};
+  // H_l falls and H_s rises with the prefactors; each end takes the extremes independently. The
+  // contact theory indents the cap by less than its depth: an end where e* reaches the depth is
+  // no lift at all, NaN, and the outcome unknown.
+  const auto lift = [&](double alpha_e) {
+    const double Hl = lifting_height(R, phi, h, alpha_e);
+    return Hl > 0.0 ? Hl : std::numeric_limits<double>::quiet_NaN();
+  };
+  p.H_l = {lift(a.alpha_e.hi), lift(a.alpha_e.lo)};
+  p.beyond_range = depth_exceeded(p, h / R, phi);
   p.H_s = {snap_height(a.alpha_F.lo, a.alpha_e.lo, E, h, mg, R),
            snap_height(a.alpha_F.hi, a.alpha_e.hi, E, h, mg, R)};
   p.H = {p.H_l.lo + p.H_s.lo, p.H_l.hi + p.H_s.hi};
 
   // Jump: the impulsive force must exceed the net weight.
   p.jump_margin = {p.F_star.lo / mg, p.F_star.hi / mg};
-  // Snap: the fully inverted shell must store enough energy to lift the popper by H_l. A
-  // non-positive H_l needs no lift at all.
+  // Snap: the fully inverted shell must store enough energy to lift the popper by H_l.
   p.inverted_energy = mirror_energy(constants.mirror_energy_prefactor, E, h, p.cap_depth, nu, R);
-  const auto margin = [&](double Hl) {
-    return Hl > 0.0 ? p.inverted_energy / (mg * Hl) : std::numeric_limits<double>::infinity();
-  };
-  p.snap_margin = {margin(p.H_l.hi), margin(p.H_l.lo)};
+  p.snap_margin = {p.inverted_energy / (mg * p.H_l.hi), p.inverted_energy / (mg * p.H_l.lo)};
+  if (!p.beyond_range.empty()) return p;
 
   const bool can_snap = p.snap_margin.hi >= 1.0;
   const bool can_fail_to_snap = p.snap_margin.lo < 1.0;
@@ -139,6 +163,10 @@ Prediction predict(const config::Case& c, const ContactConstants& constants) {
     p.outcome.snap = p.jump_margin.lo <= 1.0;
   }
   return p;
+}
+
+std::string Prediction::outcome_text() const {
+  return beyond_range.empty() ? outcome.text() : "unknown: " + beyond_range;
 }
 
 }  // namespace snapjump::theory

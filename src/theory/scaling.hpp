@@ -78,6 +78,12 @@ struct Prediction {
   Range snap_margin;             // U / (mg H_l); No snap when < 1
   OutcomeSet outcome;
   std::string constants_source;
+  // Where the case leaves the theory's range, in words; empty inside it. Beyond it the ends of
+  // the ranges that rest on the broken assumption are NaN (no value), and the outcome is unknown
+  // (no outcome in `outcome`).
+  std::string beyond_range;
+  // The outcome as reports write it: outcome.text(), or "unknown: " and beyond_range.
+  [[nodiscard]] std::string outcome_text() const;
 };
 
 Prediction predict(const config::Case& c, const ContactConstants& constants);

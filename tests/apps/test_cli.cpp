@@ -106,10 +106,76 @@ TEST(Cli, BadFlagValueNamesTheFlag) {
 
 TEST(Cli, PredictRefusesACaseItCannotEvaluate) {
   // h = 1e-310 m is positive and smaller than R, but t_c overflows: an error, not "inf".
-  const auto r = run({"predict", "--h", "1e-310m"});
+  const auto r = run({"predict", "--h", "1e-310m", "--allow-implausible"});
   EXPECT_EQ(r.code, kExitBadInput);
   EXPECT_NE(r.err.find("non-finite"), std::string::npos) << r.err;
   EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
+}
+
+TEST(Cli, BareNumbersThatReadAsNoPopperAreRefused) {
+  // mm, MPa and N meant; read in SI: a shell of 40 m, 3 m thick, of 0.8 Pa.
+  const auto r = run({"predict", "--R", "40", "--h", "3", "--E", "0.8", "--net-weight", "1"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_EQ(r.out.find("predicted outcome"), std::string::npos) << r.out;
+  for (const char* part :
+       {"error: the case lies outside what a popper can plausibly be",
+        "--R: shell.R = 40 is read as 40 m (a number without a unit is in SI), outside 1 mm .. 1 m",
+        "e.g. \"40 mm\"", "--h: shell.h = 3 is read as 3 m",
+        "--E: material.E = 0.8 is read as 0.8 Pa", "--allow-implausible",
+        "warning: --net-weight: popper.net_weight = 1 has no unit and is read in SI, as 1 N"}) {
+    EXPECT_NE(r.err.find(part), std::string::npos) << part << "\n" << r.err;
+  }
+  // A case file's bare number is named by its line; --allow-implausible takes it, warning.
+  const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_bare.toml";
+  std::ofstream(path) << "[shell]\nR = 30\nh = \"2 mm\"\n[material]\nE = \"1.2 MPa\"\n"
+                         "[popper]\nnet_weight = \"0.48 N\"\n";
+  const auto file = run({"predict", path.string(), "--no-branch"});
+  EXPECT_EQ(file.code, kExitBadInput);
+  EXPECT_NE(file.err.find("snapjump_cli_bare.toml:2: shell.R = 30 is read as 30 m"),
+            std::string::npos)
+      << file.err;
+  const auto allowed = run({"predict", path.string(), "--no-branch", "--allow-implausible"});
+  EXPECT_EQ(allowed.code, kExitOk) << allowed.err;
+  EXPECT_NE(allowed.err.find("warning: " + path.string() + ":2: shell.R = 30 is read as 30 m"),
+            std::string::npos)
+      << allowed.err;
+}
+
+TEST(Cli, ABareNumberIsReadInSIWithAWarningAndAUnitWordJoinsIt) {
+  const auto r = run({"predict", "--R", "0.03", "--h", "2", "mm", "--E=1.2", "MPa", "--no-branch",
+                      "--format", "json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_DOUBLE_EQ(doc["case"]["h"].get<double>(), 0.002);
+  EXPECT_DOUBLE_EQ(doc["case"]["E"].get<double>(), 1.2e6);
+  EXPECT_NE(r.err.find("warning: --R: shell.R = 0.03 has no unit and is read in SI, as 0.03 m"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("shell.h"), std::string::npos) << r.err;
+  // A word that is no unit stays the case file.
+  const auto file = run({"predict", "--R", "30", "no-such-case.toml"});
+  EXPECT_EQ(file.code, kExitBadInput);
+  EXPECT_NE(file.err.find("no-such-case.toml"), std::string::npos) << file.err;
+}
+
+TEST(Cli, AThickShellGetsWhatCanBeComputedAndAnUnknownOutcome) {
+  const auto r = run({"predict", "--h", "6mm", "--no-branch"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.err.find("warning: the predicted outcome is unknown: the indentation at the onset"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.out.find("predicted outcome: unknown: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("F*  peak plate force"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  const auto j = run({"predict", "--h", "6mm", "--no-branch", "--format", "json"});
+  ASSERT_EQ(j.code, kExitOk) << j.err;
+  const auto doc = nlohmann::json::parse(j.out);
+  EXPECT_TRUE(doc["quantities"]["H_l"]["lower"].is_null());
+  EXPECT_GT(doc["quantities"]["H_l"]["upper"].get<double>(), 0.0);
+  EXPECT_TRUE(doc["quantities"]["F_star"]["upper"].is_number());
+  EXPECT_TRUE(doc["outcome"].empty());
+  EXPECT_EQ(doc["outcome_text"].get<std::string>().rfind("unknown: ", 0), 0U);
+  EXPECT_TRUE(doc["beyond_range"].is_string());
 }
 
 TEST(Cli, UnphysicalFlagIsRejected) {
@@ -450,8 +516,9 @@ TEST(Cli, ResumeTakesNoNewCase) {
   EXPECT_NE(r.err.find("give no case file"), std::string::npos) << r.err;
 }
 
-// A finished run's folder with a stale summary: the series is a jump of the default popper.
-std::filesystem::path stale_run(const std::string& name, bool finished) {
+// A finished run's folder with a stale summary: the series is a jump of the default popper, whose
+// force peaks at `peak` [N].
+std::filesystem::path stale_run(const std::string& name, bool finished, double peak = 2.0) {
   const auto dir = std::filesystem::temp_directory_path() / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
@@ -464,9 +531,9 @@ std::filesystem::path stale_run(const std::string& name, bool finished) {
       const double w = std::max(0.01 - 0.5 * t, 0.0);  // below 0.03 R = 0.9 mm from 18.2 ms
       double F = 0.48;
       if (t >= 0.019)
-        F = std::max(0.0, 2.0 * (1.0 - (t - 0.019) / 0.004));
+        F = std::max(0.0, peak * (1.0 - (t - 0.019) / 0.004));
       else if (t >= 0.018)
-        F = 0.48 + 1.52 * (t - 0.018) / 0.001;
+        F = 0.48 + (peak - 0.48) * (t - 0.018) / 0.001;
       const double z = t <= 0.023 ? t : 0.023 + (t - 0.023) - 4.9 * (t - 0.023) * (t - 0.023);
       csv << t << ',' << z << ',' << 0.015 << ',' << w << ',' << 0.004 << ',' << F << ','
           << (w > 0.0 ? "ring" : "disk") << '\n';
@@ -490,6 +557,48 @@ TEST(Cli, ReanalyzeRewritesTheSummaryOfAFinishedRun) {
   EXPECT_TRUE(summary["theory"].contains("quantities"));
   EXPECT_EQ(summary["status"], "completed");  // what the run itself wrote stays
   EXPECT_DOUBLE_EQ(summary["wall_time"].get<double>(), 12.5);
+}
+
+TEST(Cli, APrefactorFarFromItsBoundsIsNamedWithItsLikelyCause) {
+  // F* = 6 N against F_c = 0.32 N: alpha_F = 18.75, beyond 1.5 times the upper bound 8.04.
+  const auto dir = stale_run("snapjump_cli_far_from_bounds", true, 6.0);
+  const auto r = run({"run", "--reanalyze", dir.string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(
+      r.out.find("  warning     alpha_F = 18.8 lies a factor 2.33 above its upper bound 8.04: "),
+      std::string::npos)
+      << r.out;
+  std::ifstream in(dir / "summary.json");
+  const auto summary = nlohmann::json::parse(in);
+  const auto& far = summary["comparison"]["alpha_F"]["far_from_bounds"];
+  EXPECT_NEAR(far["factor"].get<double>(), 18.75 / 8.04, 0.01);
+  EXPECT_TRUE(far["above"].get<bool>());
+  EXPECT_FALSE(far["likely_cause"].get<std::string>().empty());
+  ASSERT_FALSE(summary["comparison"]["warnings"].empty());
+  EXPECT_NE(summary["comparison"]["warnings"][0].get<std::string>().find("alpha"),
+            std::string::npos);
+  // Inside the bounds (alpha_F = 6.25), no such warning.
+  const auto inside = stale_run("snapjump_cli_inside_bounds", true);
+  const auto ok = run({"run", "--reanalyze", inside.string()});
+  EXPECT_EQ(ok.out.find("alpha_F = "), std::string::npos) << ok.out;
+}
+
+TEST(Cli, ARunThatDoesNotInvertSaysWhatToTryAndExitsThree) {
+  // A shallow cap (phi = 20 deg): its branch has no buckling maximum below 1.4 p_c.
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_not_inverted";
+  std::filesystem::remove_all(dir);
+  const auto r = run({"run", "--phi", "20deg", "--model", "axisymmetric", "--resolution", "coarse",
+                      "--output", dir.string(), "--quiet"});
+  EXPECT_EQ(r.code, kExitNotPrepared) << r.out << r.err;
+  for (const char* part :
+       {"result      did not invert", "try         Zoelly's p_c of the case",
+        "axisymmetric quasi-static branch", "--resolution default", "--model 3d"}) {
+    EXPECT_NE(r.out.find(part), std::string::npos) << part << "\n" << r.out;
+  }
+  std::ifstream in(dir / "summary.json");
+  const auto summary = nlohmann::json::parse(in);
+  EXPECT_EQ(summary["status"], "did not invert");
+  EXPECT_EQ(summary["hints"].size(), 4U);
 }
 
 TEST(Cli, ReanalyzeRefusesARunWithoutResults) {

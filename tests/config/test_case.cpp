@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "config/case.hpp"
+#include "config/plausibility.hpp"
 
 namespace snapjump::config {
 namespace {
@@ -301,6 +302,50 @@ TEST(CaseFile, HostileStringsSurviveTheRoundTrip) {
     const auto body = [](const std::string& t) { return t.substr(t.find('\n')); };  // no comment
     EXPECT_EQ(body(to_toml(r)), body(text)) << "written twice, the same values";
   }
+}
+
+TEST(CaseFile, BareNumbersAndImplausibleValuesAreNoted) {
+  const auto units = parse_case(kMinimal, "case.toml");
+  EXPECT_TRUE(units.bare_numbers.empty());
+  EXPECT_TRUE(units.implausible.empty());
+  // A bare number that reads as a plausible value, in the file and by a flag.
+  const auto bare = parse_case(replace(kMinimal, "R = \"30 mm\"", "R = 0.03"), "case.toml",
+                               std::vector<Override>{{"shell.h", "0.002", "--h"}});
+  ASSERT_EQ(bare.bare_numbers.size(), 2U);
+  EXPECT_NE(bare.bare_numbers[0].find("case.toml:2: shell.R = 0.03 has no unit and is read in "
+                                      "SI, as 0.03 m"),
+            std::string::npos)
+      << bare.bare_numbers[0];
+  EXPECT_NE(bare.bare_numbers[1].find("--h: shell.h = 0.002"), std::string::npos);
+  EXPECT_TRUE(bare.implausible.empty());
+  // A bare number that reads as no popper's: implausible (and not also bare), naming the range.
+  const auto metres = parse_case(replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2\""), "case.toml");
+  ASSERT_EQ(metres.implausible.size(), 1U);
+  EXPECT_TRUE(metres.bare_numbers.empty());
+  for (const char* part :
+       {"case.toml:6: material.E = \"1.2\" is read as 1.2 Pa", "1 kPa .. 10 GPa", "\"1.2 MPa\""}) {
+    EXPECT_NE(metres.implausible[0].find(part), std::string::npos) << metres.implausible[0];
+  }
+  // The case a run writes carries units: read back, it has no bare numbers.
+  auto c = units;
+  c.numerics.end_time = 0.5;
+  const auto text = to_toml(c);
+  EXPECT_NE(text.find("R = \"0.03 m\""), std::string::npos) << text;
+  EXPECT_TRUE(parse_case(text, "written.toml").bare_numbers.empty());
+}
+
+TEST(CaseFile, PlausibleRangesBoundKnownKeysAndHoldThePapersPoppers) {
+  const auto c = default_case();
+  for (const auto& r : plausible_ranges()) {
+    const auto* k = find_quantity_key(r.key);
+    ASSERT_NE(k, nullptr) << r.key;
+    EXPECT_LT(r.lo, r.hi) << r.key;
+    EXPECT_FALSE(r.why.empty()) << r.key;
+    auto copy = c;
+    const double v = k->field ? *k->field(copy) : 0.0;
+    EXPECT_TRUE(r.holds(v)) << r.key << " = " << v;
+  }
+  EXPECT_EQ(plausible_range("material.nu"), nullptr);
 }
 
 TEST(CaseFile, MissingFile) {

@@ -90,6 +90,27 @@ TEST_F(UnitsTest, GarbageIsRejected) {
   expect_error(parser, "1e999 m", Dimension::Length, "out of range");
 }
 
+TEST_F(UnitsTest, ABareNumberIsOneWithoutAUnit) {
+  EXPECT_TRUE(is_bare_number("40"));
+  EXPECT_TRUE(is_bare_number(" 4e-2 "));
+  EXPECT_TRUE(is_bare_number("+3"));
+  EXPECT_FALSE(is_bare_number("40 mm"));
+  EXPECT_FALSE(is_bare_number("40mm"));
+  EXPECT_FALSE(is_bare_number("mm"));
+  EXPECT_FALSE(is_bare_number(""));
+  EXPECT_FALSE(is_bare_number("+"));
+}
+
+TEST_F(UnitsTest, UnitsOfAnyDimensionAreKnownAsUnits) {
+  EXPECT_TRUE(parser.is_unit("mm"));
+  EXPECT_TRUE(parser.is_unit(" kPa "));
+  EXPECT_TRUE(parser.is_unit("kg/m^3"));
+  EXPECT_TRUE(parser.is_unit("N"));
+  EXPECT_FALSE(parser.is_unit("mmm"));
+  EXPECT_FALSE(parser.is_unit("examples/default.toml"));
+  EXPECT_FALSE(parser.is_unit(""));
+}
+
 TEST_F(UnitsTest, FromSiInvertsToSi) {
   EXPECT_NEAR(parser.from_si(0.03, "mm", Dimension::Length), 30.0, 1e-12);
   EXPECT_NEAR(parser.from_si(1.2e6, "MPa", Dimension::Pressure), 1.2, 1e-12);

@@ -145,6 +145,35 @@ TEST(Predict, HeavierPopperSnapsThenStopsSnapping) {
   EXPECT_LT(heavy.snap_margin.hi, 1.0);
 }
 
+TEST(Predict, AThickShellLeavesTheContactTheorysRangeAndSaysWhere) {
+  EXPECT_TRUE(predict(config::default_case(), paper_constants()).beyond_range.empty());
+  // h / R = 0.2: e* = alpha_e h reaches 4.36 * 6 = 26.2 mm, past the cap's depth of 24.8 mm.
+  auto c = config::default_case();
+  c.shell.h = 0.006;
+  const auto p = predict(c, paper_constants());
+  for (const char* part :
+       {"e* = alpha_e h, reaches 26.2 mm", "cap's depth R (1 - cos phi) = 24.8 mm",
+        "h / R below 0.189", "this case has 0.2"}) {
+    EXPECT_NE(p.beyond_range.find(part), std::string::npos) << p.beyond_range;
+  }
+  EXPECT_EQ(p.outcome_text().rfind("unknown: the indentation at the onset", 0), 0U)
+      << p.outcome_text();
+  EXPECT_FALSE(p.outcome.jump || p.outcome.snap || p.outcome.no_snap);
+  // What rests on H_l has no value at the end beyond the range; the rest is computed.
+  EXPECT_TRUE(std::isnan(p.H_l.lo));
+  EXPECT_NEAR(p.H_l.hi, 0.0247906 - 1.74557 * 0.006, 1e-6);
+  EXPECT_TRUE(std::isnan(p.H.lo));
+  EXPECT_TRUE(std::isnan(p.snap_margin.hi));
+  EXPECT_TRUE(std::isfinite(p.snap_margin.lo));
+  EXPECT_TRUE(std::isfinite(p.F_star.hi) && std::isfinite(p.H_s.hi) && std::isfinite(p.H.hi));
+  // A shallow cap leaves it at any thickness the theory considers: both ends of H_l.
+  c = config::default_case();
+  c.shell.phi = 10.0 * std::numbers::pi / 180.0;
+  const auto shallow = predict(c, paper_constants());
+  EXPECT_FALSE(shallow.beyond_range.empty());
+  EXPECT_TRUE(std::isnan(shallow.H_l.lo) && std::isnan(shallow.H_l.hi));
+}
+
 TEST(Predict, UsesGivenJumpPressure) {
   auto c = config::default_case();
   c.protocol.delta_p_j = 2500.0;
