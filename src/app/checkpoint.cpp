@@ -53,15 +53,17 @@ LoopState decode_checkpoint(std::string_view bytes, popper::Popper& pop, std::st
   const auto fail = [&](const std::string& why) {
     return CheckpointError(fmt::format("{}: {}", what, why));
   };
-  std::string_view body = bytes;
-  if (bytes.size() >= kTrailer && std::memcmp(bytes.data() + bytes.size() - kTrailer, kTrailerMagic,
-                                              sizeof kTrailerMagic) == 0) {
-    body = bytes.substr(0, bytes.size() - kTrailer);
-    std::uint64_t sum = 0;
-    std::memcpy(&sum, bytes.data() + bytes.size() - sizeof sum, sizeof sum);
-    if (sum != fnv1a64(body)) {
-      throw fail("the checksum does not match its contents: the file is damaged");
-    }
+  // No trailer, no resume: a file cut short (or cut and re-sealed by hand) could otherwise drop
+  // the rows recorded before it without a word.
+  if (bytes.size() < kTrailer || std::memcmp(bytes.data() + bytes.size() - kTrailer, kTrailerMagic,
+                                             sizeof kTrailerMagic) != 0) {
+    throw fail("it ends without its checksum: the file is truncated or was not written whole");
+  }
+  const std::string_view body = bytes.substr(0, bytes.size() - kTrailer);
+  std::uint64_t sum = 0;
+  std::memcpy(&sum, bytes.data() + bytes.size() - sizeof sum, sizeof sum);
+  if (sum != fnv1a64(body)) {
+    throw fail("the checksum does not match its contents: the file is damaged");
   }
   std::istringstream f{std::string(body), std::ios::binary};
   try {
