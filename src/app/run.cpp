@@ -474,6 +474,12 @@ class Run {
   [[nodiscard]] double wall() const {
     return std::chrono::duration<double>(Clock::now() - start_).count();
   }
+  // The run's wall time so far, the parts before a resume included, into the summary.
+  void note_wall_time() { summary_["wall_time"] = earlier_wall_ + wall(); }
+  // A resumed run keeps what its first part knew and the folder's case.toml does not: where the
+  // case came from, which values were defaults, and the wall time of the parts before.
+  void keep_earlier_summary(const nlohmann::json& before);
+  double earlier_wall_ = 0.0;
   void snapshot();
   popper::Sample record();
   // The preparation's progress line for a phase; stops the run when the user asked.
@@ -629,6 +635,17 @@ void Run::check_new_end(double last_t) const {
   }
 }
 
+void Run::keep_earlier_summary(const nlohmann::json& before) {
+  if (before.contains("case") && before["case"].is_object()) {
+    for (const char* key : {"source", "defaults_used"}) {
+      if (before["case"].contains(key)) summary_["case"][key] = before["case"][key];
+    }
+  }
+  if (before.contains("wall_time") && before["wall_time"].is_number()) {
+    earlier_wall_ = std::max(0.0, before["wall_time"].get<double>());
+  }
+}
+
 void Run::resume() {
   std::string status;
   if (std::ifstream prev(dir_ / "summary.json"); prev) {
@@ -636,6 +653,7 @@ void Run::resume() {
     if (before.is_object() && before.contains("preparation")) {
       summary_["preparation"] = before["preparation"];
     }
+    if (before.is_object()) keep_earlier_summary(before);
     if (before.is_object() && before.contains("numerics")) {
       check_same_numerics(before["numerics"], summary_["numerics"], dir_);
     }
@@ -710,6 +728,9 @@ Run::End Run::go_to_the_apex() {
       if (pop_.time() + 1e-12 >= loop_.next_checkpoint || end.stop != Stop::No) {
         loop_.next_checkpoint += numerics_.checkpoint_interval;
         write_checkpoint(dir_, pop_, loop_);
+        // The wall time with it: a run killed now resumes knowing how long it had run.
+        note_wall_time();
+        write_json_file(dir_ / "summary.json", summary_);
       }
       if (end.stop != Stop::No) break;
       progress(run_start, start_steps);
@@ -738,6 +759,7 @@ void Run::progress(double run_start, long start_steps) {
 int Run::pause() {
   summary_["status"] = fmt::format("{} at t = {:.6g} s; continue with {}", io::run_status::kPaused,
                                    pop_.time(), resume_command(dir_));
+  note_wall_time();
   write_json_file(dir_ / "summary.json", summary_);
   fmt::print(out_, "  status      {}\n", summary_["status"].get<std::string>());
   return kExitOk;
@@ -746,6 +768,7 @@ int Run::pause() {
 int Run::interrupt() {
   summary_["status"] = fmt::format("{} at t = {:.6g} s; continue with {}",
                                    io::run_status::kInterrupted, pop_.time(), resume_command(dir_));
+  note_wall_time();
   write_json_file(dir_ / "summary.json", summary_);
   fmt::print(out_,
              "  status      {}\n  stopped     at t = {:.6g} s after the release, step {}; "
@@ -758,7 +781,7 @@ int Run::interrupt() {
 int Run::finish(const std::string& status) {
   snapshot();
   summary_["status"] = status;
-  summary_["wall_time"] = wall();
+  note_wall_time();
   summary_["steps"] = pop_.steps();
   const auto analysis = write_results(dir_, summary_, c_, series_, status, out_);
   if (io::run_status::capped(status)) {

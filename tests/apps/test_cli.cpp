@@ -833,6 +833,26 @@ TEST(RunEnd, ACappedRunSaysSoAndALaterCapContinuesIt) {
   EXPECT_DOUBLE_EQ(*kept.numerics.end_time, 0.06);
 }
 
+// A paused run resumed keeps in its summary where its case came from, which values were the
+// defaults, and the wall time of its first part (the folder's case.toml, which the resume reads,
+// has every value written out and is not where the case came from).
+TEST(RunEnd, AResumedRunKeepsItsCasesOriginAndItsWholeWallTime) {
+  const auto dir = own_folder("snapjump_cli_resume_summary");
+  auto args = short_run(dir, "30ms");
+  args.insert(args.end(), {"--pause-at", "10ms"});
+  const auto first = run(args);
+  ASSERT_EQ(first.code, kExitOk) << first.err;
+  const auto before = summary_of(dir);
+  ASSERT_FALSE(before["case"]["defaults_used"].empty());
+  ASSERT_TRUE(before["wall_time"].is_number());
+  const auto resumed = run({"run", "--resume", dir.string(), "--quiet"});
+  ASSERT_EQ(resumed.code, kExitOk) << resumed.err;
+  const auto after = summary_of(dir);
+  EXPECT_EQ(after["case"]["source"], before["case"]["source"]);
+  EXPECT_EQ(after["case"]["defaults_used"], before["case"]["defaults_used"]);
+  EXPECT_GT(after["wall_time"].get<double>(), before["wall_time"].get<double>());
+}
+
 // Ctrl-C: SIGINT to a `snapjump run` past its release leaves a checkpoint and the status
 // "interrupted" with the command that resumes it, and the process ends with 130. The run, given
 // no end time, states the cap it has from the case; resumed with a cap of its own, its series is
