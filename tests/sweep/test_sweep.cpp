@@ -30,6 +30,17 @@ std::string read(const fs::path& p) {
   return s.str();
 }
 
+// A table's header and its first three rows (empty where the file has fewer).
+struct TableStart {
+  std::string header, r0, r1, r2;
+};
+TableStart table_start(const fs::path& csv) {
+  std::istringstream rows(read(csv));
+  TableStart t;
+  for (auto* line : {&t.header, &t.r0, &t.r1, &t.r2}) std::getline(rows, *line);
+  return t;
+}
+
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream f(p);
@@ -317,12 +328,7 @@ TEST(SweepExecute, RunsWhatIsLeftRecordsFailuresAndResumesInterruptedRuns) {
   // The table: one row per run, the measured values of finished runs, the failure's reason.
   const auto csv = dir / "out" / "sweep.csv";
   EXPECT_EQ(write_table(spec, csv), 2);
-  std::istringstream rows(read(csv));
-  std::string header, r0, r1, r2;
-  std::getline(rows, header);
-  std::getline(rows, r0);
-  std::getline(rows, r1);
-  std::getline(rows, r2);
+  const auto [header, r0, r1, r2] = table_start(csv);
   EXPECT_EQ(header.rfind("run,status,outcome,predicted_outcome,friction.mu [1],R [m]", 0), 0u);
   EXPECT_NE(header.find("F_star [N]"), std::string::npos);
   EXPECT_NE(header.find("alpha_F_lo [1]"), std::string::npos);
@@ -347,12 +353,7 @@ TEST(SweepTable, AnOutcomeIsNeverBlankAndAnUndeterminedOneCarriesItsReason) {
         R"({"status": "completed", "measured": {"outcome": "Thrown", "undetermined": null}})");
   const auto csv = dir / "out" / "sweep.csv";
   EXPECT_EQ(write_table(spec, csv), 1);
-  std::istringstream rows(read(csv));
-  std::string header, r0, r1, r2;
-  std::getline(rows, header);
-  std::getline(rows, r0);
-  std::getline(rows, r1);
-  std::getline(rows, r2);
+  const auto [header, r0, r1, r2] = table_start(csv);
   EXPECT_NE(header.find(",wall_time [s],undetermined,error"), std::string::npos) << header;
   EXPECT_EQ(r0.rfind("run-0000,completed,undetermined,", 0), 0u) << r0;
   EXPECT_NE(r0.find(",the record ends 45.8 ms after the force peak,"), std::string::npos) << r0;
