@@ -268,7 +268,7 @@ TEST(CaseFile, WrittenInSIAndReadBackTheSame) {
   EXPECT_EQ(r.numerics.end_time, c.numerics.end_time);
 }
 
-// Any title and any source file name survive the round trip (issue 15, item 2): the case file a
+// Any title and any source file name survive the round trip: the case file a
 // run writes back must read again, or the run cannot be resumed and a sweep's runs all fail.
 TEST(CaseFile, HostileStringsSurviveTheRoundTrip) {
   std::string every;

@@ -1,7 +1,7 @@
 // The default popper's shell hanging apex-down from its clamped rim a little above the rigid
 // plate, by default at the default preset's mesh (sqrt(hR)/2 elements, one quadratic element
-// through h) and cells of 0.025 R (the preset's grid before issue 13; the constructor takes
-// another). The rim is a rigid body of huge mass: it moves at whatever speed
+// through h) and cells of 0.025 R (a fixed fraction of R, not the presets' h/4; the
+// constructor takes another). The rim is a rigid body of huge mass: it moves at whatever speed
 // the test sets, whatever the shell does. Shared by the shell-on-plate validations.
 #pragma once
 

@@ -156,8 +156,9 @@ TEST(RunResume, ARunIsNotContinuedWithOtherNumerics) {
 }
 
 TEST(RunResume, ARunMadeBeforeTheBulkKeyIsNotContinuedWithAnotherRule) {
-  // Summaries before session 10 had no bulk_integration; such a run used its model's rule then
-  // (axisymmetric: reduced). Given "full" in its case.toml, the resume refuses and names it.
+  // Summaries written before the bulk_integration key existed have none; such a run used its
+  // model's rule then (axisymmetric: reduced). Given "full" in its case.toml, the resume refuses
+  // and names it.
   const auto dir = std::filesystem::temp_directory_path() / "snapjump_resume_bulk_test";
   ASSERT_NO_FATAL_FAILURE(pause_a_run(dir));
   auto summary = nlohmann::json::parse(read(dir / "summary.json"));

@@ -18,8 +18,8 @@ namespace snapjump {
 namespace {
 
 // The default popper's shell at the default preset's mesh (sqrt(hR)/2 elements, one quadratic
-// element through h) with cells of 0.025 R (the preset's grid before issue 13), its rim lowered
-// at 0.05 m/s onto the plate.
+// element through h) with cells of 0.025 R (a fixed fraction of R, not the presets' h/4), its rim
+// lowered at 0.05 m/s onto the plate.
 TEST(ShellOnPlate, ForceAgainstIndentationFollowsTheContactSolver) {
   using P = testing::ShellOverPlate;
   const double R = P::R, h = P::h, nu = P::nu, E = P::E, v0 = 0.05;
