@@ -42,8 +42,11 @@ class Problem {
       if (!axis[a]) dof_r_[a] = dofs_++;
       dof_z_[a] = dofs_++;
     }
+    contact_rows_.assign(n, {});
     for (int a : body.inner()) {
-      if (!rim[a]) contact_nodes_.push_back(a);
+      if (rim[a]) continue;
+      contact_nodes_.push_back(a);
+      contact_rows_[a] = body.inner();
     }
     make_colours();
   }
@@ -122,6 +125,8 @@ class Problem {
   int dofs_ = 0;
   std::vector<int> dof_r_, dof_z_;
   std::vector<int> contact_nodes_;
+  // The contacts couple any two inner nodes: each contact node's rows are all the inner nodes.
+  std::vector<std::vector<int>> contact_rows_;
   std::vector<std::vector<int>> colours_;     // nodes no element holds two of
   std::vector<std::vector<int>> neighbours_;  // per node: the nodes its elements hold
 };
@@ -196,15 +201,13 @@ Triplets Problem::stiffness(const Points& x, double dp) const {
   for (const auto& nodes : colours_) differences(x, nodes, neighbours_, elements, t);
   if (!contacts_) return t;
   // The contacts couple any two inner nodes: one node at a time, every inner node's row.
-  std::vector<std::vector<int>> rows(body_.num_nodes());
-  for (int a : contact_nodes_) rows[a] = body_.inner();
   const auto contacts = [&](const Points& y, Points& f) { contact_forces(y, f); };
   Points f = zero();
   contact_forces(x, f);
   const bool active = std::any_of(contact_nodes_.begin(), contact_nodes_.end(),
                                   [&](int a) { return f.r[a] != 0.0 || f.z[a] != 0.0; });
   if (!active) return t;
-  for (int a : contact_nodes_) differences(x, {a}, rows, contacts, t);
+  for (int a : contact_nodes_) differences(x, {a}, contact_rows_, contacts, t);
   return t;
 }
 
