@@ -424,15 +424,25 @@ StaticBranch Tracer::run() {
                                   o_.max_dp_before_buckling);
       break;
     }
-    if (rise < 0 && dq < 0) rise = 0;   // past a maximum
-    if (rise == 0 && dq > 0) rise = 1;  // and then a minimum
+    const bool turned_up = rise == 0 && dq > 0;  // previous was a minimum
+    if (rise < 0 && dq < 0) rise = 0;            // past a maximum
+    if (turned_up) rise = 1;                     // and then a minimum
     if (rise == 1 && dq < 0) rise = 0;
     // end_dp is met on the inverted side only (V < 0: the shell through its rim's plane).
     if (rise == 1 && s.v < 0.0 && std::isfinite(o_.end_dp) && s.q * o_.p_ref >= o_.end_dp) {
-      b.reached_end = at_end_dp(s, *previous);
-      if (b.reached_end) b.points.back() = point(s, 0);
-      if (!b.reached_end) b.stop_reason = "no equilibrium at exactly end_dp next to the branch";
-      break;
+      if (previous->q * o_.p_ref < o_.end_dp) {
+        b.reached_end = at_end_dp(s, *previous);
+        if (b.reached_end) b.points.back() = point(s, 0);
+        if (!b.reached_end) b.stop_reason = "no equilibrium at exactly end_dp next to the branch";
+        break;
+      }
+      // A minimum on the inverted side above end_dp: the foot of a segment that never gets
+      // down to end_dp. (A segment that rose from a minimum at V > 0 and crosses into V < 0
+      // above end_dp is followed on: it may turn and come down to the inverted side's own.)
+      if (turned_up && previous->v < 0.0) {
+        b.reached_end = b.end_above = true;
+        break;
+      }
     }
     if (*iterations <= 3) ds = std::min(o_.step, 1.5 * ds);
     if (*iterations >= 8) ds *= 0.7;

@@ -53,7 +53,10 @@ struct BranchOptions {
   double min_step = 1e-5;    // below this the continuation gives up
   double end_volume = -1.0;  // stop once v = V / V0 falls below this
   // Or, past p_c and a minimum, on the inverted side (V < 0), stop once dp rises to end_dp [Pa]
-  // (NaN: not used), and solve for the equilibrium at exactly end_dp (StaticBranch::state).
+  // (NaN: not used), and solve for the equilibrium at exactly end_dp (StaticBranch::state). Where
+  // that minimum already lies above end_dp, the segment rising from it holds no equilibrium at
+  // end_dp: the branch stops at its first point (StaticBranch::end_above, the state at that
+  // point's dp), from which a lower suction snaps the shell back.
   double end_dp = std::numeric_limits<double>::quiet_NaN();
   // Stop, not reaching the end, once dp rises past this [Pa] before the branch's first maximum:
   // a suction raised no further never buckles the cap (NaN: not used).
@@ -75,7 +78,9 @@ struct StaticBranch {
   double v_minus = std::numeric_limits<double>::quiet_NaN();
   double v_hold = std::numeric_limits<double>::quiet_NaN();
   bool reached_end = false;  // v fell below end_volume, or dp rose to end_dp
-  std::string stop_reason;   // why it stopped, when it did not reach the end
+  // It stopped at the foot of an inverted segment whose minimum lies above end_dp.
+  bool end_above = false;
+  std::string stop_reason;  // why it stopped, when it did not reach the end
   // The fold that stopped it, if one did (at the last point).
   std::optional<fem::FoldedElement> fold;
   // The nodes' positions at the last point (at end_dp when that ended it).

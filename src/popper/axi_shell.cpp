@@ -72,24 +72,26 @@ void AxiShell::start_held(double damping) {
 }
 
 std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(double dp,
+                                                                               double max_dp,
                                                                                double p_ref) {
   axi::BranchOptions o;
   o.p_ref = p_ref;
   o.end_dp = dp;
-  o.max_dp_before_buckling = dp;
+  o.max_dp_before_buckling = max_dp;
   o.end_volume = -std::numeric_limits<double>::max();  // only end_dp ends it
   const auto b = axi::trace_static_branch(body_, o);
   dynamics_.mutable_positions() = b.state;
   dynamics_.zero_velocities();
+  const auto& last = b.points.back();
   if (b.fold) {
-    const auto& last = b.points.back();
     throw fem::FoldedElement(
         fmt::format("on the quasi-static buckling branch at V / V0 = {:.4f}, delta_p = {:.0f} Pa "
                     "({:.3f} p_c), on the way to {:.0f} Pa",
                     last.volume / b.V0, last.dp, last.dp / p_ref, dp),
         *b.fold);
   }
-  return QuasiStaticBuckle{b.reached_end, b.stable, b.p_c, b.p_minus, b.p_hold, b.stop_reason};
+  return QuasiStaticBuckle{b.reached_end, b.stable, last.dp,      b.p_c,
+                           b.p_minus,     b.p_hold, b.stop_reason};
 }
 
 void AxiShell::start_on_plate(core::RigidBody& container, double mu, double damping) {

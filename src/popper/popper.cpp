@@ -233,7 +233,7 @@ void Popper::begin_preparation(const char* call) {
 Preparation Popper::buckle(const Progress& progress) {
   begin_preparation("buckle");
   Preparation prep;
-  buckle(prep, progress, zoelly_pc());
+  (void)buckle(prep, progress, zoelly_pc());
   return prep;
 }
 
@@ -251,8 +251,9 @@ Preparation Popper::prepare(const Progress& progress) {
   begin_preparation("prepare");
   Preparation prep;
   const double pc = zoelly_pc();
-  if (!buckle(prep, progress, pc)) return prep;
-  if (!set_delta_p_j(prep, progress, pc)) return prep;
+  const auto suction = buckle(prep, progress, pc);
+  if (!suction) return prep;
+  if (!set_delta_p_j(prep, progress, pc, *suction)) return prep;
   ground(prep, progress);
   prep.message += fmt::format(
       ", held at delta_p_j = {:.0f} Pa ({:.2f} p_c), grounded in {:.0f} ms: plate force {:.3f} N "
@@ -264,16 +265,18 @@ Preparation Popper::prepare(const Progress& progress) {
 // Phase 1, container held in the air: raise the suction past the buckling pressure until the
 // shell inverts. The syringe holds the pressure difference: the gas is held at it before each
 // step. Where the model follows the pressure-volume branch instead (settings.quasi_static), the
-// shell is put at rest in that equilibrium.
-bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
+// shell is put at rest in its equilibrium at delta_p_j on the inverted segment: the end state of
+// phases 1 and 2 together. Returns the suction the shell is left under, or nothing.
+std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
   const auto& st = settings_;
   auto& m = *model_;
   const double p_buckle = st.buckle_factor * pc;
   m.start_held(st.held_damping * numerics_.prep_damping);
   if (st.quasi_static) {
-    gas_.hold(p_buckle);
-    if (const auto qs = m.buckle_quasi_statically(p_buckle, pc)) {
-      return buckled_quasi_statically(prep, *qs, pc);
+    if (const auto qs = m.buckle_quasi_statically(delta_p_j_, p_buckle, pc)) {
+      gas_.hold(qs->dp);
+      if (!buckled_quasi_statically(prep, *qs, pc)) return std::nullopt;
+      return qs->dp;
     }
   }
   SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
@@ -293,13 +296,13 @@ bool Popper::buckle(Preparation& prep, const Progress& progress, double pc) {
         prep.inverted = true;
         prep.message = fmt::format("inverted under {:.0f} Pa ({:.2f} p_c), {}", p_buckle,
                                    st.buckle_factor, describe_onset(prep, pc));
-        return true;
+        return p_buckle;
       }
     }
   }
   prep.message = fmt::format("the shell did not invert under {:.0f} Pa ({:.1f} p_c)", p_buckle,
                              st.buckle_factor);
-  return false;
+  return std::nullopt;
 }
 
 bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::QuasiStaticBuckle& qs,
@@ -316,33 +319,43 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
         p_buckle, settings_.buckle_factor, qs.note);
     return false;
   }
-  if (!qs.reached || !qs.stable || !inverted()) {
+  // At the foot of an inverted segment above delta_p_j (its minimum, p_hold, lies above it) the
+  // state is a limit point's neighbour: the lowered suction of phase 2 decides what follows.
+  const bool foot = qs.reached && qs.dp > delta_p_j_ * (1.0 + 1e-9);
+  if (!qs.reached || !(qs.stable || foot) || !inverted()) {
     prep.message = fmt::format(
         "the pressure-volume branch did not bring the shell to a stable inverted state under "
         "{:.0f} Pa ({:.2f} p_c){}{}",
-        p_buckle, settings_.buckle_factor, qs.note.empty() ? "" : ": ", qs.note);
+        delta_p_j_, delta_p_j_ / pc, qs.note.empty() ? "" : ": ", qs.note);
     return false;
   }
   model_->check_folds();
   prep.inverted = true;
+  const auto where =
+      foot ? fmt::format(
+                 "to the foot of its inverted segment at {:.0f} Pa ({:.3f} p_c), above "
+                 "delta_p_j",
+                 qs.dp, qs.dp / pc)
+           : fmt::format("to its inverted equilibrium at delta_p_j, {:.0f} Pa ({:.2f} p_c)", qs.dp,
+                         qs.dp / pc);
   prep.message = fmt::format(
-      "inverted under {:.0f} Pa ({:.2f} p_c) along the quasi-static pressure-volume branch: it "
-      "buckles at {:.0f} Pa ({:.3f} p_c), holds fully inverted down to {:.0f} Pa ({:.3f} p_c) "
-      "and has no buckled state below {:.0f} Pa ({:.3f} p_c)",
-      p_buckle, settings_.buckle_factor, qs.p_c, qs.p_c / pc, qs.p_hold, qs.p_hold / pc, qs.p_minus,
-      qs.p_minus / pc);
+      "inverted along the quasi-static pressure-volume branch {}: it buckles at {:.0f} Pa ({:.3f} "
+      "p_c), holds fully inverted down to {:.0f} Pa ({:.3f} p_c) and has no buckled state below "
+      "{:.0f} Pa ({:.3f} p_c)",
+      where, qs.p_c, qs.p_c / pc, qs.p_hold, qs.p_hold / pc, qs.p_minus, qs.p_minus / pc);
   return true;
 }
 
-// Phase 2, still in the air: bring the suction to delta_p_j and let the shell settle.
-bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double pc) {
+// Phase 2, still in the air: bring the suction from phase 1's, `from` [Pa], to delta_p_j and let
+// the shell settle (where phase 1 left it at delta_p_j already, this only checks in time that it
+// stays).
+bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double pc, double from) {
   const auto& st = settings_;
   auto& m = *model_;
-  const double p_buckle = st.buckle_factor * pc;
   const double t0 = m.time();
   while (m.time() < t0 + st.down + st.settle) {
     const double f = std::min(1.0, (m.time() - t0) / st.down);
-    gas_.hold(p_buckle + f * (delta_p_j_ - p_buckle));
+    gas_.hold(from + f * (delta_p_j_ - from));
     m.step();
     if (progress && m.steps() % st.progress_every == 0)
       progress("set delta_p_j", m.time() - t0, (m.time() - t0) / (st.down + st.settle));

@@ -256,10 +256,11 @@ class Popper {
   // The phases of prepare(): each returns false, with prep.message saying why, when the popper
   // cannot go on to the next. buckle() puts the words of its outcome in prep.message on success
   // too, and prepare() adds those of the later phases.
-  bool buckle(Preparation& prep, const Progress& progress, double pc);
+  // buckle() returns the suction it leaves the shell under [Pa] (nothing: it did not invert).
+  std::optional<double> buckle(Preparation& prep, const Progress& progress, double pc);
   bool buckled_quasi_statically(Preparation& prep, const ShellModel::QuasiStaticBuckle& qs,
                                 double pc);
-  bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc);
+  bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc, double from);
   void ground(Preparation& prep, const Progress& progress);
   // The protocol's one test of "inverted": the apex above the outer rim.
   [[nodiscard]] bool inverted() const { return model_->apex_z() > model_->outer_rim_z(); }

@@ -45,21 +45,27 @@ class ShellModel {
   // Phases 1-2: the rim held in the air, mass-proportional damping c [1/s], no plate. The
   // pressure difference (outside minus inside) comes from the function given at construction.
   virtual void start_held(double damping) = 0;
-  // Phase 1 done quasi-statically, where the model has the solver for it (a model without one
-  // returns nothing, and the protocol ramps the suction in time): the rim held, the shell put at
-  // rest in the equilibrium of suction dp on the inverted part of its pressure-volume branch,
-  // followed from the natural state by continuation. p_ref: the pressure scale (Zoelly's p_c).
-  // Throws fem::FoldedElement when the branch folds an element before it gets there.
+  // Phases 1-2 done quasi-statically, where the model has the solver for it (a model without one
+  // returns nothing, and the protocol ramps the suction in time): the rim held, the shell's
+  // pressure-volume branch followed from the natural state by continuation, through its buckling
+  // maximum (which must lie below max_dp) and on to the inverted segment, where the shell is put
+  // at rest in the equilibrium of suction dp. p_ref: the pressure scale (Zoelly's p_c). Where the
+  // inverted segment's lowest suction lies above dp, the shell is left at the foot of that
+  // segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction from there. Throws
+  // fem::FoldedElement when the branch folds an element before it gets there.
   struct QuasiStaticBuckle {
-    bool reached = false;  // the equilibrium at dp was found
+    bool reached = false;  // an end state was found (at dp, or at the foot above it)
     bool stable = false;   // and is stable under pressure control
+    double dp = 0.0;       // the suction of that end state [Pa]
     // The branch's buckling maximum, its lowest suction after it (below which no buckled state
     // is left) and the lowest suction that holds the fully inverted shell [Pa] (NaN: not found).
     double p_c = 0.0, p_minus = 0.0, p_hold = 0.0;
     std::string note;  // why it stopped, when it did not reach dp
   };
-  virtual std::optional<QuasiStaticBuckle> buckle_quasi_statically(double dp, double p_ref) {
+  virtual std::optional<QuasiStaticBuckle> buckle_quasi_statically(double dp, double max_dp,
+                                                                   double p_ref) {
     (void)dp;
+    (void)max_dp;
     (void)p_ref;
     return std::nullopt;
   }

@@ -5,7 +5,8 @@
 // - under pressure control the segment between the buckling maximum and the minimum that follows
 //   is unstable (there dV/dp > 0) and the segments where the volume falls as the suction rises are
 //   stable, which the factorisation of the stiffness at fixed dp must agree with;
-// - the equilibrium asked at a given suction on the inverted segment lies at that suction;
+// - the equilibrium asked at a given suction on the inverted segment lies at that suction, and
+//   one asked below that segment's lowest suction is refused for the segment's foot;
 // - p_c moves by less than 0.5 % when the mesh is refined twice along the meridian;
 // - the thin-shell theory's branch (theory/shell_branch.hpp, no code shared) has the same p_-
 //   within 2 %, and a p_c that differs by less than h / R, the order of the thickness' effects
@@ -86,6 +87,28 @@ TEST(StaticBranch, EndsAtTheSuctionAskedOnTheInvertedSegment) {
   EXPECT_LT(body.cavity_volume(b.state), -body.cavity_volume(body.nodes()) * 0.9);
   EXPECT_TRUE(b.stable);
   EXPECT_NO_THROW(body.check_folds(b.state));
+}
+
+// Asked for a suction below the inverted segment's lowest one (p_hold, 0.26 of Zoelly's here),
+// the branch holds no inverted equilibrium there: it stops at the segment's foot, just above
+// p_hold, and says so, instead of taking an equilibrium of another segment.
+TEST(StaticBranch, BelowTheInvertedSegmentItStopsAtItsFoot) {
+  const Body body = make_body(21);
+  auto o = options(-3.0);
+  o.end_dp = 0.1 * kPref;
+  const auto b = trace_static_branch(body, o);
+  ASSERT_TRUE(b.reached_end) << b.stop_reason;
+  EXPECT_TRUE(b.end_above);
+  const double dp = b.points.back().dp;
+  std::printf("foot at %.5f, p_hold %.5f (over Zoelly's p_c)\n", dp / kPref, b.p_hold / kPref);
+  EXPECT_GT(dp, b.p_hold);
+  EXPECT_LT(dp, 1.1 * b.p_hold);
+  EXPECT_LT(body.cavity_volume(b.state), 0.0);
+  // Asked above p_hold, the same branch ends at the suction asked, not at the foot.
+  o.end_dp = 0.5 * kPref;
+  const auto above = trace_static_branch(body, o);
+  EXPECT_FALSE(above.end_above);
+  EXPECT_NEAR(above.points.back().dp / o.end_dp, 1.0, 1e-9);
 }
 
 TEST(StaticBranch, BucklingPressureConvergesAlongTheMeridian) {

@@ -5,10 +5,9 @@
 // explain:
 //   - the axisymmetric (25, 2.5) mm cap does not invert: its quasi-static branch peaks at 1.59 p_c,
 //     beyond the protocol's 1.4 p_c;
-//   - at the axisymmetric default preset, the shells whose inverted state creases next to the
-//     clamp on the way to 1.4 p_c stop there with the fold named (docs/axisymmetric.md, "The
-//     crease at the clamp"): (25, 2.0) and (30, 2.0) mm (the default popper too); (30, 1.0) mm
-//     does not crease, nor (30, 1.5) mm on this preset's 0.75 mm elements along.
+//   (At the protocol's delta_p_j = 0.5 p_c no example's quasi-static preparation reaches the crease
+//   that the finer axisymmetric meshes form next to the clamp deeper in the inversion:
+//   docs/axisymmetric.md, "The crease at the clamp".)
 // Each run prints a line for docs/validation.md's table: outcome, r*, F*, H, the prefactors and
 // the wall time.
 #include <gtest/gtest.h>
@@ -37,16 +36,11 @@ void PrintTo(const Case& c, std::ostream* os) {
   *os << c.file << ", " << c.model << ", " << c.preset;
 }
 
-enum class Expect { Outcome, DidNotInvert, Crease };
+enum class Expect { Outcome, DidNotInvert };
 
 Expect expected(const Case& c) {
   const std::string file = c.file, model = c.model, preset = c.preset;
-  if (model != "axisymmetric") return Expect::Outcome;
-  if (file == "R25_h2.5.toml") return Expect::DidNotInvert;
-  if (preset == "default" &&
-      (file == "R25_h2.0.toml" || file == "R30_h2.0.toml" || file == "default.toml")) {
-    return Expect::Crease;
-  }
+  if (model == "axisymmetric" && file == "R25_h2.5.toml") return Expect::DidNotInvert;
   return Expect::Outcome;
 }
 
@@ -88,10 +82,6 @@ TEST_P(AllCases, RunToTheApexOrStopForAStatedReason) {
     case Expect::DidNotInvert:
       EXPECT_EQ(status, "did not invert") << r.err;
       EXPECT_NE(r.out.find("buckling maximum"), std::string::npos) << r.out;
-      break;
-    case Expect::Crease:
-      EXPECT_NE(status.find("quasi-static buckling branch"), std::string::npos) << status;
-      EXPECT_NE(status.find("folded through itself"), std::string::npos) << status;
       break;
     case Expect::Outcome:
       EXPECT_EQ(r.code, 0) << r.err;
