@@ -90,8 +90,8 @@ std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(d
                     last.volume / b.V0, last.dp, last.dp / p_ref, dp),
         *b.fold);
   }
-  return QuasiStaticBuckle{b.reached_end, b.stable, last.dp,      b.p_c,
-                           b.p_minus,     b.p_hold, b.stop_reason};
+  return QuasiStaticBuckle{b.reached_end, b.end_above, b.stable, last.dp,
+                           b.p_c,         b.p_minus,   b.p_hold, b.stop_reason};
 }
 
 void AxiShell::start_on_plate(core::RigidBody& container, double mu, double damping) {

@@ -321,7 +321,7 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
   }
   // At the foot of an inverted segment above delta_p_j (its minimum, p_hold, lies above it) the
   // state is a limit point's neighbour: the lowered suction of phase 2 decides what follows.
-  const bool foot = qs.reached && qs.dp > delta_p_j_ * (1.0 + 1e-9);
+  const bool foot = qs.foot;
   if (!qs.reached || !(qs.stable || foot) || !inverted()) {
     prep.message = fmt::format(
         "the pressure-volume branch did not bring the shell to a stable inverted state under "

@@ -55,6 +55,7 @@ class ShellModel {
   // fem::FoldedElement when the branch folds an element before it gets there.
   struct QuasiStaticBuckle {
     bool reached = false;  // an end state was found (at dp, or at the foot above it)
+    bool foot = false;     // at the foot of an inverted segment whose lowest suction exceeds dp
     bool stable = false;   // and is stable under pressure control
     double dp = 0.0;       // the suction of that end state [Pa]
     // The branch's buckling maximum, its lowest suction after it (below which no buckled state

@@ -39,7 +39,7 @@ void PrintTo(const Case& c, std::ostream* os) {
 enum class Expect { Outcome, DidNotInvert };
 
 Expect expected(const Case& c) {
-  const std::string file = c.file, model = c.model, preset = c.preset;
+  const std::string file = c.file, model = c.model;
   if (model == "axisymmetric" && file == "R25_h2.5.toml") return Expect::DidNotInvert;
   return Expect::Outcome;
 }
