@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "app/compare_command.hpp"
+#include "app/option_values.hpp"
 #include "app/plot_command.hpp"
 #include "app/run.hpp"
 #include "app/sweep_command.hpp"
@@ -307,17 +309,6 @@ struct AnalyzeOptions {
   std::string format = "table";
 };
 
-// "NAME=TEXT" -> {NAME, TEXT}; `flag` names the option in the error.
-std::pair<std::string, std::string> name_value(const std::string& text, const char* flag) {
-  const auto eq = text.find('=');
-  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
-    throw config::CaseError(
-        fmt::format("{} {}: write NAME=VALUE, e.g. {} t=\"Time (s)\" or {} F=mN", flag, text,
-                    "--column", "--unit"));
-  }
-  return {text.substr(0, eq), text.substr(eq + 1)};
-}
-
 // One record's analysis, or the error that stopped it.
 struct RecordResult {
   std::string file;
@@ -395,11 +386,7 @@ int analyze_cmd(const AnalyzeOptions& o, std::ostream& out, std::ostream& err) {
   if (!o.case_file.empty()) c = config::load_case_file(o.case_file, {}, &parser);
   measure::AnalysisOptions opts;
   const auto quantity = [&](const std::string& text, units::Dimension d, const char* flag) {
-    try {
-      return parser.parse(text, d);
-    } catch (const units::UnitError& e) {
-      throw config::CaseError(fmt::format("{}: {}", flag, e.what()));
-    }
+    return quantity_option(parser, text, d, flag);
   };
   if (!o.R.empty()) opts.R = quantity(o.R, units::Dimension::Length, "--R");
   if (!o.force_threshold.empty()) {
@@ -797,6 +784,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
 
   SweepCommand sweep_cmd(app);
   PlotCommand plot_cmd(app);
+  CompareCommand compare_cmd(app);
 
   const auto args = with_units_joined(argc, argv);
   std::vector<const char*> words;
@@ -845,6 +833,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     }
     if (sweep_cmd.parsed()) return sweep_cmd.run(out, err);
     if (plot_cmd.parsed()) return plot_cmd.run(out, err);
+    if (compare_cmd.parsed()) return compare_cmd.run(out, err);
     if (run_cmd->parsed()) {
       if (!pause_at.empty()) {
         const units::UnitParser parser;

@@ -4,11 +4,14 @@
 // laws. Definitions and thresholds: docs/analysis.md.
 #pragma once
 
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <ostream>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "config/case.hpp"
@@ -45,6 +48,15 @@ struct AnalysisOptions {
   bool complete = false;
   // Added to F before the analysis [N]: the net weight, for a plate tared with the popper on it.
   double force_offset = 0.0;
+  // No threshold on F that tells the popper off the plate (the launch's, the landing's ceiling)
+  // exceeds this fraction of the net weight the plate carries (the case's popper.net_weight, or
+  // else the resting force F_rest measured before the snap): a force above it is the popper
+  // standing on the plate.
+  double weight_fraction = 0.5;
+  // A record without an onset criterion (no w with R, no contact column) is read from the force
+  // alone: a force peak is a snap's when it stands above the resting force by more than this
+  // fraction of it and by twice noise_multiple times the plate's noise.
+  double snap_fraction = 0.1;
 };
 
 // F(t) through a second-order low-pass of resonant frequency f [Hz], damping ratio zeta and unit
@@ -58,7 +70,13 @@ std::vector<double> plate_response(std::span<const double> t, std::span<const do
 // ApexGap: first time w / R < onset_ratio; ContactDisk: first row whose contact state is "disk".
 enum class OnsetSource { None, ApexGap, ContactDisk };
 
+// What the snap was read from: the contact transition on the plate (an onset criterion: w with R,
+// or a contact column), or the plate's force alone (a force-plate record: no onset, t* from the
+// force's rise, H from the flight's duration when there is no z).
+enum class Basis { Transition, ForceOnly };
+
 struct Analysis {
+  Basis basis = Basis::Transition;
   // Transition onset (ring -> disk contact).
   std::optional<double> t_onset;  // [s]
   OnsetSource onset_source = OnsetSource::None;
@@ -78,6 +96,9 @@ struct Analysis {
   // The foot of the force's rise to F* [s]: with a gradual eversion it comes before the apex
   // criterion fires.
   std::optional<double> t_force_rise;
+  // The force on the plate before the snap's rise: the median of F from the record's start to the
+  // foot of the rise (the net weight the plate carries) [N].
+  std::optional<double> F_rest;
   // Launch: F falls below the threshold and stays below it.
   std::optional<double> force_threshold;  // the one used [N]
   std::optional<double> force_noise;      // the noise estimate behind the default threshold [N]
@@ -86,6 +107,14 @@ struct Analysis {
   std::optional<double> t_star_rise;      // t_launch - t_force_rise [s]
   // The first sample back on the plate after the launch, when the record goes on that long [s].
   std::optional<double> t_landing;
+  // The flight: T = t_landing - t_launch [s], and how far the container rose in it above its
+  // height at the launch [m]: from z (its highest z in the flight less z at the launch) when the
+  // record has a z column, else from T as a ballistic flight that decelerates at
+  // flight_deceleration, H_flight = a T^2 / 8 (flight_rule says which and why).
+  std::optional<double> flight_time;
+  std::optional<double> H_flight;
+  std::optional<double> flight_deceleration;  // [m/s^2]
+  std::string flight_rule;
   // Heights of the container.
   std::optional<double> H;    // max z [m]
   std::optional<double> H_l;  // z at the onset [m]
@@ -118,20 +147,46 @@ struct Analysis {
   // The same with the popper's own mass: the limit of a wire too soft to move the counterweight
   // within t*.
   std::optional<double> alpha_t_own;
+  // t_star_rise over the same t_c (a force-plate record's t*, from the force's rise).
+  std::optional<double> alpha_t_rise;
   // And with m = mg / g, the mass of the net weight (no counterweight's inertia at all).
   std::optional<double> alpha_t_net;
   std::optional<double> H_s_scaled;      // H_s / (E h^4 / (m g R)), m g = net weight
   std::optional<double> F_star_over_mg;  // F* / (m g)
   std::vector<std::string> warnings;     // anything a reader should know, in plain words
+  // Where each quantity present came from: its key (quantity_table()) -> the record's columns and
+  // the case's keys it was computed from, e.g. "F_star" -> "t, F".
+  std::map<std::string, std::string, std::less<>> sources;
+  // The source of a quantity, or "" when it has none.
+  [[nodiscard]] std::string source(std::string_view key) const;
 };
 
+// One quantity of the analysis: the one table that the JSON, the command line's tables and CSV
+// and the Python package read (src/measure/quantities.cpp).
+struct QuantitySpec {
+  std::string_view key;         // "F_star", the name in JSON, CSV and Python
+  std::string_view unit;        // SI: "s", "m", "N", "Pa", "m/s^2" or "1"
+  std::string_view label;       // for a table: "F*  peak plate force of the snap"
+  std::string_view definition;  // one line: how it is measured (docs/analysis.md has the rest)
+  std::optional<double> Analysis::*field;
+  double display_scale;           // shown as value / display_scale ...
+  std::string_view display_unit;  // ... in this unit ("ms", "mm", "N", "kPa", "")
+  bool core;                      // shown in a record's table even when absent ("-")
+};
+std::span<const QuantitySpec> quantity_table();
+const QuantitySpec* find_quantity(std::string_view key);
+// The quantities of `analyze`'s one-row-per-record table, in its column order.
+std::span<const std::string_view> record_table_keys();
+
 std::string_view to_string(OnsetSource s);  // "none", "w/R", "contact=disk"
+std::string_view to_string(Basis b);        // "transition", "force only"
 // "Jump", "Snap", "No snap" (the theory's spelling).
 std::string outcome_text(const std::optional<theory::Outcome>& o);
 
-// Analyses a series with columns t and F (required), and w, r, e, z, contact when present.
-// Throws SeriesError when t or F is missing, the series has no rows, or the options make no sense
-// (R <= 0, ...).
+// Analyses a series with columns t and F (required), and w, r, e, z, delta_p, contact when
+// present; without w (with R) and contact, from the force alone (Basis::ForceOnly). The stages are
+// in src/measure/stages.hpp. Throws SeriesError when t or F is missing, the series has no rows, or
+// the options make no sense (R <= 0, ...).
 Analysis analyze(const TimeSeries& series, const AnalysisOptions& options = {},
                  const config::Case* c = nullptr);
 
@@ -141,8 +196,10 @@ Analysis analyze(const TimeSeries& series, const AnalysisOptions& options = {},
 // outcome that this contradicts (the reason then says why).
 std::string contradiction(const Analysis& a);
 
-// The result in SI: {"units": "SI", "quantities": {"t_onset": {"value": .., "unit": "s"}, ..},
-// "outcome": "Jump", "onset_source": .., "warnings": [..]}; absent values are null.
+// The result in SI: {"units": "SI", "basis": "transition", "quantities": {"t_onset": {"value": ..,
+// "unit": "s", "label": .., "definition": .., "source": "t, w"}, ..}, "outcome": "Jump",
+// "onset_source": .., "flight_rule": .., "warnings": [..]}; absent values are null (and their
+// source too).
 nlohmann::json to_json(const Analysis& a);
 void write_json(std::ostream& out, const Analysis& a);
 

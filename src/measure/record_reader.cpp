@@ -522,6 +522,12 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
     if (keep[i]) kept_names.push_back(names[i]);
   }
   TimeSeries series(kept_names, keep_contact);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    if (keep[i] && i != time_pos)
+      series.own_intervals_.emplace_back(names[i], median_interval(own_t[i]));
+  }
+  if (keep_contact)
+    series.own_intervals_.emplace_back(std::string(kContact), median_interval(contact_t));
   series.notes_ = std::move(notes);
   series.gaps_ = std::move(gaps);
   series.reserve(clock.size());

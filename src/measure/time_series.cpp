@@ -181,6 +181,18 @@ std::span<const double> TimeSeries::column(std::string_view name) const {
   return data_[*i];
 }
 
+double TimeSeries::sample_interval(std::string_view column) const {
+  for (const auto& [name, dt] : own_intervals_) {
+    if (name == column) return dt;
+  }
+  const auto t = time();
+  if (t.size() < 2) return 0.0;
+  std::vector<double> d(t.size() - 1);
+  for (std::size_t i = 1; i < t.size(); ++i) d[i - 1] = t[i] - t[i - 1];
+  std::nth_element(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2), d.end());
+  return d[d.size() / 2];
+}
+
 void TimeSeries::add_to_column(std::string_view name, double offset) {
   const auto i = index(name);
   if (!i) throw SeriesError(fmt::format("the time series has no column '{}'", name));

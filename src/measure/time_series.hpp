@@ -128,6 +128,11 @@ class TimeSeries {
   [[nodiscard]] const std::vector<std::string>& notes() const { return notes_; }
   // The stretches where a column had no samples (interpolated across).
   [[nodiscard]] const std::vector<Gap>& gaps() const { return gaps_; }
+  // How far apart a column's own samples lie [s]: the median interval of the rows that had a
+  // value of it in the file read (its sensor's rate, before any resampling onto the force's
+  // clock), else the median interval of the series' times; "contact" for the contact column. 0
+  // for fewer than two rows.
+  [[nodiscard]] double sample_interval(std::string_view column) const;
 
  private:
   void append(std::span<const double> values, std::optional<ContactState> contact);
@@ -139,6 +144,7 @@ class TimeSeries {
   bool with_contact_ = false;
   std::vector<std::string> notes_;
   std::vector<Gap> gaps_;
+  std::vector<std::pair<std::string, double>> own_intervals_;  // set by the reader
 };
 
 // Appends rows to a CSV file (or stream) as they come and flushes after each, so that a run that

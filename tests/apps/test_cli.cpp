@@ -350,6 +350,49 @@ TEST(Cli, AnalyzeSeveralLabRecordsIntoOneTable) {
   EXPECT_NE(r.err.find("snapjump_cli_lab_bad.csv:2"), std::string::npos) << r.err;
 }
 
+// A record compared with a run folder that holds the same series: every difference of a
+// quantity the two read alike is zero and within the record's uncertainty; what is not a run
+// folder is refused naming what is missing.
+TEST(Cli, CompareARecordWithARunFolder) {
+  namespace fs = std::filesystem;
+  const auto dir = fs::temp_directory_path() / "snapjump_cli_compare";
+  fs::remove_all(dir);
+  fs::create_directories(dir / "run");
+  const std::string series =
+      "t [ms],F [mN],w [mm],z [mm]\n0,480,20,0\n10,600,10,5\n20,700,1.0,10\n21,2500,0.5,10\n"
+      "22,2000,0.2,10\n23,500,0.1,10\n24,0,0.5,11\n30,0,6,20\n40,0,8,25\n50,0,5,26\n"
+      "60,0,5,24\n";
+  std::ofstream(dir / "rec.csv") << series;
+  std::ofstream(dir / "run" / "series.csv") << series;
+  fs::copy_file(example("default.toml"), dir / "run" / "case.toml");
+  const auto r = run({"compare", (dir / "rec.csv").string(), (dir / "run").string(), "--format",
+                      "json", "--no-figure", "--complete"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["units"], "SI");
+  EXPECT_EQ(j["outcomes"]["records"][0], j["outcomes"]["run"]);
+  const auto& t = j["quantities"]["t_star"];
+  ASSERT_TRUE(t["record"].is_number()) << r.out;
+  EXPECT_DOUBLE_EQ(t["difference"].get<double>(), 0.0);
+  EXPECT_TRUE(t["within"].get<bool>());
+  EXPECT_EQ(t["source"], "t, w, F, z");  // the onset from w; the launch from F, checked by z
+  // The run's F* is read through the paper's 170 Hz plate, the record's as recorded.
+  EXPECT_EQ(j["quantities"]["F_star"]["run_key"], "F_star_plate");
+  const auto table = run(
+      {"compare", (dir / "rec.csv").string(), (dir / "run").string(), "--no-figure", "--complete"});
+  ASSERT_EQ(table.code, kExitOk) << table.err;
+  EXPECT_NE(table.out.find("t_star"), std::string::npos) << table.out;
+
+  const auto not_dir = run({"compare", (dir / "rec.csv").string(), (dir / "rec.csv").string()});
+  EXPECT_EQ(not_dir.code, kExitBadInput);
+  EXPECT_NE(not_dir.err.find("is not a folder"), std::string::npos) << not_dir.err;
+  fs::remove(dir / "run" / "case.toml");
+  const auto no_case = run({"compare", (dir / "rec.csv").string(), (dir / "run").string()});
+  EXPECT_EQ(no_case.code, kExitBadInput);
+  EXPECT_NE(no_case.err.find("no case.toml"), std::string::npos) << no_case.err;
+  fs::remove_all(dir);
+}
+
 TEST(Cli, AnalyzeRejectsAWrongUnitOnAFlag) {
   const auto path = std::filesystem::temp_directory_path() / "snapjump_cli_series2.csv";
   std::ofstream(path) << "t,F\n0,1\n0.1,0\n";

@@ -391,17 +391,26 @@ TEST(Analysis, WithoutRTheWColumnIsNotUsed) {
   EXPECT_TRUE(has_warning(a, "no shell radius R"));
 }
 
-TEST(Analysis, UndeterminedWithoutWOrContact) {
+// Without w and contact the snap is read from the force alone: F* and the launch as with w, t*
+// from the force's rise (no onset), the flight's rise from z.
+TEST(Analysis, FromTheForceAloneWithoutWOrContact) {
   Spec spec;
   spec.with_w = false;
   const auto a = analyze(make(spec), with_R());
-  EXPECT_FALSE(a.outcome);
-  EXPECT_FALSE(a.t_onset);
-  EXPECT_FALSE(a.F_star);
-  EXPECT_TRUE(has_warning(a, "no onset can be found"));
-  EXPECT_EQ(outcome_text(a.outcome), "undetermined");
-  ASSERT_TRUE(a.H);  // heights need no onset
-  EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-12);
+  EXPECT_EQ(a.basis, Basis::ForceOnly);
+  EXPECT_EQ(a.outcome, theory::Outcome::Jump) << a.undetermined;
+  EXPECT_FALSE(a.t_onset || a.t_star || a.r_star);
+  EXPECT_TRUE(has_warning(a, "the snap is read from the force alone"));
+  ASSERT_TRUE(a.F_star && a.t_launch && a.t_star_rise && a.F_rest && a.H && a.H_flight);
+  EXPECT_NEAR(*a.F_star, 2.0, 1e-12);
+  EXPECT_NEAR(*a.F_rest, 0.5, 1e-12);  // the median before the rise
+  EXPECT_NEAR(*a.t_launch, 25.92e-3, 1e-10);
+  EXPECT_NEAR(*a.t_star_rise, 25.92e-3 - 21.1e-3, 1e-9);
+  EXPECT_NEAR(*a.H, 66e-3 * kV0, 1e-12);  // heights need no onset
+  // The flight's rise above the launch: z at the launch (25.92 ms) to the apex at 106 ms.
+  EXPECT_NEAR(*a.H_flight, 66e-3 * kV0 - z_jump(25.92e-3), 1e-9);
+  EXPECT_EQ(a.source("t_star_rise"), "t, F, z");
+  EXPECT_EQ(a.source("F_star"), "t, F");
 }
 
 TEST(Analysis, OnsetAtFirstSample) {
@@ -583,6 +592,31 @@ TEST(Analysis, Json) {
   std::ostringstream out;
   write_json(out, analyze(make(spec), {}, &c));
   EXPECT_EQ(nlohmann::json::parse(out.str()), j);
+  EXPECT_EQ(j["basis"], "transition");
+  EXPECT_EQ(j["quantities"]["t_star"]["source"], "t, w, F, z");
+  EXPECT_EQ(j["quantities"]["alpha_F"]["source"], "t, w, F; case E, h, R");
+  EXPECT_TRUE(j["quantities"]["r_star"]["source"].is_null());
+}
+
+// Every quantity an analysis gives says where it came from, and every source is a quantity of
+// the one table, on records of every kind.
+TEST(Analysis, EveryQuantitySaysItsSource) {
+  const auto c = paper_case(0.48);
+  Spec no_w;
+  no_w.with_w = false;
+  Spec contact;
+  contact.with_w = false;
+  contact.with_contact = true;
+  for (const auto& spec : {Spec{}, no_w, contact}) {
+    const auto a = analyze(make(spec), with_R(), &c);
+    for (const auto& q : quantity_table()) {
+      EXPECT_EQ((a.*q.field).has_value(), !a.source(q.key).empty()) << q.key;
+    }
+    for (const auto& [key, source] : a.sources) {
+      EXPECT_NE(find_quantity(key), nullptr) << key;
+    }
+  }
+  for (const auto key : record_table_keys()) EXPECT_NE(find_quantity(key), nullptr) << key;
 }
 
 // A measured CSV goes through the same analysis: the reference run written in ms / mm / mN.
@@ -647,13 +681,19 @@ TEST(Analysis, AFlightEndsAtTheLanding) {
   ASSERT_TRUE(b.F_star && b.t_launch);
   EXPECT_NEAR(*b.F_star, 2.0, 1e-12);
   EXPECT_NEAR(*b.t_launch, 25.92e-3, 1e-10);
-  // (c) Neither w nor contact nor z: the force alone; the first launch still ends the snap, but
-  // with no onset criterion the outcome stays undetermined.
+  // (c) Neither w nor contact nor z: the force alone. The first launch still ends the snap, the
+  // landing's 5 N is still not F*, and the flight to the landing says it jumped.
   spec.with_contact = false;
   spec.with_z = false;
   const auto c = analyze(make(spec), with_R());
-  EXPECT_FALSE(c.outcome);
-  EXPECT_FALSE(c.undetermined.empty());
+  EXPECT_EQ(c.basis, Basis::ForceOnly);
+  EXPECT_EQ(c.outcome, theory::Outcome::Jump) << c.undetermined;
+  ASSERT_TRUE(c.F_star && c.t_launch && c.t_landing && c.flight_time);
+  EXPECT_NEAR(*c.F_star, 2.0, 1e-12);
+  EXPECT_NEAR(*c.t_launch, 25.92e-3, 1e-10);
+  EXPECT_NEAR(*c.flight_time, *c.t_landing - *c.t_launch, 1e-12);
+  EXPECT_FALSE(c.t_star);
+  EXPECT_EQ(c.source("F_star"), "t, F");
 }
 
 TEST(Analysis, ContactLostEndsTheSnapWhenThePlateRingsOn) {

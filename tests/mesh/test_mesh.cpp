@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -39,8 +40,10 @@ const Mesh& cap() {
 double radius(const Mesh& m, int a) { return std::hypot(m.nodes.x[a], m.nodes.y[a], m.nodes.z[a]); }
 double polar(const Mesh& m, int a) { return std::acos(-m.nodes.z[a] / radius(m, a)); }
 
+// One folder per process: ctest runs the tests of this file side by side, each writing its files.
 std::filesystem::path temp_file(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / "snapjump_mesh_test";
+  const auto dir =
+      std::filesystem::temp_directory_path() / ("snapjump_mesh_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   return dir / name;
 }
