@@ -8,9 +8,7 @@
 
 namespace snapjump::axi {
 
-RimCone rim_cone(const MeshSpec& spec) {
-  return {std::cos(spec.phi), std::sin(spec.phi), spec.R - 0.5 * spec.h};
-}
+RimCone rim_cone(const MeshSpec& spec) { return core::container_face(spec.R, spec.h, spec.phi); }
 
 double default_contact_stiffness(const Body& body) {
   const auto& m = body.material();

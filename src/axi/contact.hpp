@@ -19,35 +19,12 @@
 #include <vector>
 
 #include "axi/body.hpp"
+#include "core/container_face.hpp"
 
 namespace snapjump::axi {
 
-// The rim face's cone in the meridian plane, with the container's offset dz along z. Made by
-// rim_cone(); asked for every surface node at every step, so its cosine and sine are kept.
-struct RimCone {
-  double cos_phi = 1.0, sin_phi = 0.0;  // of the rim face's polar angle phi
-  double s_min = 0.0;  // where the rigid part starts, from the centre of curvature [m]
-  // Signed distance of (r, z) into the container (positive: across the face), and the distance
-  // along the face from the centre, for a container shifted by dz.
-  [[nodiscard]] double gap(double r, double z, double dz) const {
-    return r * cos_phi + (z - dz) * sin_phi;
-  }
-  [[nodiscard]] double along(double r, double z, double dz) const {
-    return r * sin_phi - (z - dz) * cos_phi;
-  }
-  // Unit normal into the container, (cos phi, sin phi).
-  [[nodiscard]] double nr() const { return cos_phi; }
-  [[nodiscard]] double nz() const { return sin_phi; }
-  // The normal velocity to take out of a point at (r, z) moving at (vr, vz) so that its step of
-  // dt ends on the cone (0 when it would end on the shell's side, or over the hole), for the
-  // container at dz at the end of the step. Frictionless: the tangential velocity is kept.
-  [[nodiscard]] double stop(double r, double z, double vr, double vz, double dt, double dz) const {
-    const double re = r + dt * vr, ze = z + dt * vz;
-    const double g = gap(re, ze, dz);
-    if (!(g > 0.0) || along(re, ze, dz) < s_min) return 0.0;
-    return g / dt;
-  }
-};
+// The rim face's cone in the meridian plane (core::ContainerFace, shared with the 3D model).
+using RimCone = core::ContainerFace;
 RimCone rim_cone(const MeshSpec& spec);
 
 class InnerSelfContact {

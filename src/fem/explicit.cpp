@@ -1,5 +1,6 @@
 #include "fem/explicit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -40,8 +41,12 @@ void ExplicitDriver::advance() {
   const double clamp_z = options_.clamp_z ? options_.clamp_z(t_next) : 0.0;
   const double clamp_vz = options_.clamp_vz ? options_.clamp_vz(t_next) : 0.0;
   const auto& X = body_.mesh().nodes;
+  const core::ContainerFace* face = options_.container_face ? &*options_.container_face : nullptr;
   bool finite = true;
-#pragma omp parallel for schedule(static) reduction(&& : finite)
+  int contacts = 0;
+  double depth = 0.0;
+#pragma omp parallel for schedule(static) reduction(&& : finite) reduction(+ : contacts) \
+    reduction(max : depth)
   for (std::size_t a = 0; a < n; ++a) {
     if (clamped_[a]) {
       const auto it = clamp_offset_.find(static_cast<int>(a));
@@ -59,14 +64,34 @@ void ExplicitDriver::advance() {
     v_.x[a] = a0 * v_.x[a] + a1 * f_.x[a] * inv_m;
     v_.y[a] = a0 * v_.y[a] + a1 * f_.y[a] * inv_m;
     v_.z[a] = a0 * v_.z[a] + a1 * f_.z[a] * inv_m;
+    if (face != nullptr) {
+      const double d = stop_at_face(*face, a, clamp_z);
+      contacts += d > 0.0 ? 1 : 0;
+      depth = std::max(depth, d);
+    }
     x_.x[a] += dt_ * v_.x[a];
     x_.y[a] += dt_ * v_.y[a];
     x_.z[a] += dt_ * v_.z[a];
     finite = finite && std::isfinite(x_.x[a] + x_.y[a] + x_.z[a]);
   }
   if (!finite) throw std::runtime_error("explicit driver: a node position became non-finite");
+  face_contacts_ = contacts;
+  face_depth_ = depth;
   time_ = t_next;
   ++steps_;
+}
+
+double ExplicitDriver::stop_at_face(const core::ContainerFace& face, std::size_t a, double dz) {
+  const double r = std::hypot(x_.x[a], x_.y[a]);
+  if (!(r > 0.0)) return 0.0;  // the face never reaches the axis
+  const double cx = x_.x[a] / r, cy = x_.y[a] / r;
+  const double vr = v_.x[a] * cx + v_.y[a] * cy;
+  const double dv = face.stop(r, x_.z[a], vr, v_.z[a], dt_, dz);
+  if (!(dv > 0.0)) return 0.0;
+  v_.x[a] -= dv * face.nr() * cx;
+  v_.y[a] -= dv * face.nr() * cy;
+  v_.z[a] -= dv * face.nz();
+  return dv * dt_;
 }
 
 void ExplicitDriver::run_until(double t_end,

@@ -5,8 +5,10 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <unordered_map>
 
+#include "core/container_face.hpp"
 #include "fem/body.hpp"
 #include "parallel/threads.hpp"
 
@@ -25,6 +27,10 @@ struct ExplicitOptions {
   // Instead of the rigid z motion: a fixed displacement of each clamped node (node index ->
   // displacement), e.g. an exact solution imposed on the rim for a validation.
   std::function<std::array<double, 3>(int)> clamp_displacement;
+  // The container's bottom face, moving with the clamp frame: a node whose step would end across
+  // it ends on it, its normal speed taken out (frictionless). Absent: nothing stops the shell
+  // there.
+  std::optional<core::ContainerFace> container_face;
   // Choose between one thread and the most allowed by timing both (parallel::ThreadTuner);
   // the results are the same either way.
   bool tune_threads = true;
@@ -48,9 +54,17 @@ class ExplicitDriver {
   [[nodiscard]] double kinetic_energy() const;
   [[nodiscard]] const Body& body() const { return body_; }
   [[nodiscard]] const parallel::ThreadTuner& thread_tuner() const { return tuner_; }
+  // How many nodes the container's face stopped in the last step, and how far the deepest of them
+  // would have crossed it [m] (0 when none).
+  [[nodiscard]] int face_contacts() const { return face_contacts_; }
+  [[nodiscard]] double face_depth() const { return face_depth_; }
 
  private:
   void advance();  // one step at the current thread count
+  // Takes out the normal speed of node a (at the step's start, moving at its new velocity) that
+  // would carry it across the face of a container at dz; returns the depth it would have
+  // crossed by [m], 0 when none.
+  double stop_at_face(const core::ContainerFace& face, std::size_t a, double dz);
   const Body& body_;
   ExplicitOptions options_;
   double dt_ = 0.0;
@@ -61,6 +75,8 @@ class ExplicitDriver {
   std::unordered_map<int, std::array<double, 3>> clamp_offset_;  // from clamp_displacement
   parallel::ThreadTuner tuner_;
   Body::ForceScratch scratch_;
+  int face_contacts_ = 0;
+  double face_depth_ = 0.0;
 };
 
 }  // namespace snapjump::fem

@@ -34,6 +34,65 @@ void ClampRule::apply(SparseGrid& grid, const StepContext& ctx) {
   body_.clamp_force = -impulse_z / ctx.dt;
 }
 
+bool ContainerFaceRule::block_may_cross(const SparseGrid& grid, std::size_t b, double dz) const {
+  // gap and along grow with r, and with z (gap) or -z (along): their largest values over the
+  // block's box bound those at its nodes.
+  const double dx = grid.dx();
+  const auto& c = grid.block_coords(b);
+  const auto far = [&](std::int64_t lo) {
+    const double a = dx * static_cast<double>(lo * kBlock);
+    return std::max(std::abs(a), std::abs(a + dx * (kBlock - 1)));
+  };
+  const double r_max = std::hypot(far(c[0]), far(c[1]));
+  const double z_lo = dx * static_cast<double>(c[2] * kBlock), z_hi = z_lo + dx * (kBlock - 1);
+  return face_.gap(r_max, z_hi, dz) > 0.0 && face_.along(r_max, z_lo, dz) >= face_.s_min;
+}
+
+void ContainerFaceRule::apply(SparseGrid& grid, const StepContext& ctx) {
+  const auto live = grid.live_blocks();
+  const long nl = static_cast<long>(live.size());
+  block_impulse_.assign(live.size(), 0.0);
+  block_contacts_.assign(live.size(), 0);
+  const double dx = grid.dx(), dz = offset_ + body_.z, vb = body_.vz;
+  const double nr = face_.nr(), nz = face_.nz();
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < nl; ++k) {
+    const auto b = static_cast<std::size_t>(live[static_cast<std::size_t>(k)]);
+    if (!block_may_cross(grid, b, dz)) continue;
+    double impulse_z = 0.0;
+    long contacts = 0;
+    for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
+      auto& g = grid.nodes[a];
+      if (g.m <= 0.0 || (grid.tags[a] & kTagClamped) != 0) continue;
+      const auto c = grid.coords(a);
+      const double x = dx * static_cast<double>(c[0]), y = dx * static_cast<double>(c[1]);
+      const double z = dx * static_cast<double>(c[2]);
+      const double r = std::hypot(x, y);
+      if (!(r > 0.0) || !face_.inside(r, z, dz)) continue;
+      const double ex = nr * x / r, ey = nr * y / r;
+      // Momentum into the container relative to the body (the body moves along z only).
+      const double pn = g.px * ex + g.py * ey + (g.pz - g.m * vb) * nz;
+      if (!(pn > 0.0)) continue;
+      g.px -= pn * ex;
+      g.py -= pn * ey;
+      g.pz -= pn * nz;
+      impulse_z -= pn * nz;
+      ++contacts;
+    }
+    block_impulse_[static_cast<std::size_t>(k)] = impulse_z;
+    block_contacts_[static_cast<std::size_t>(k)] = contacts;
+  }
+  double impulse_z = 0.0;
+  long contacts = 0;
+  for (std::size_t k = 0; k < live.size(); ++k) {
+    impulse_z += block_impulse_[k];
+    contacts += block_contacts_[k];
+  }
+  contacts_ = contacts;
+  force_z_ = impulse_z / ctx.dt;
+  body_.clamp_force -= force_z_;  // the shell pushes the body back
+}
+
 void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
   const auto live = grid.live_blocks();
   const long nl = static_cast<long>(live.size());

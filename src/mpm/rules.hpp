@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/container_face.hpp"
 #include "core/rigid_body.hpp"
 #include "mpm/grid.hpp"
 
@@ -47,6 +48,34 @@ class ClampRule final : public GridRule {
   RigidBody& body_;
   std::uint8_t tag_;
   std::vector<double> block_impulse_;  // per live block, in their order
+};
+
+// The container's bottom face around the rim (core::ContainerFace), moving with the body: on
+// every node across its rigid part, momentum moving into the container relative to the body
+// loses its normal part (frictionless), and the body takes the reaction, added to the clamp's in
+// body.clamp_force (so this rule runs after the ClampRule). The nodes that the clamp drives move
+// with the body already and are left as they are. offset: the face's displacement from the cap's
+// frame is offset + body.z.
+class ContainerFaceRule final : public GridRule {
+ public:
+  ContainerFaceRule(RigidBody& body, core::ContainerFace face, double offset)
+      : body_(body), face_(face), offset_(offset) {}
+  [[nodiscard]] std::string_view name() const override { return "container face"; }
+  void apply(SparseGrid& grid, const StepContext& ctx) override;
+  // How many nodes the face stopped in the last step, and its force on the shell along z [N].
+  [[nodiscard]] long contacts() const { return contacts_; }
+  [[nodiscard]] double force_z() const { return force_z_; }
+
+ private:
+  RigidBody& body_;
+  core::ContainerFace face_;
+  double offset_;
+  long contacts_ = 0;
+  double force_z_ = 0.0;
+  std::vector<double> block_impulse_;  // per live block, in their order
+  std::vector<long> block_contacts_;
+  // Whether any node of block b can lie across the face's rigid part.
+  [[nodiscard]] bool block_may_cross(const SparseGrid& grid, std::size_t b, double dz) const;
 };
 
 // The rigid plate with top surface z = 0: on the node layers z = 0, -dx, ..., -(layers - 1) dx

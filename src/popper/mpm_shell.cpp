@@ -136,6 +136,7 @@ void MpmShell::start_held(double damping) {
   eo.time_step_factor = numerics_.time_step_factor;
   eo.damping = damping;
   eo.pressure = [this](double) { return delta_p_(); };
+  eo.container_face = container_face();
   driver_ = std::make_unique<fem::ExplicitDriver>(*body_, eo);
   stepper_.reset();
 }
@@ -160,8 +161,25 @@ void MpmShell::build_stepper(mpm::Particles particles, core::RigidBody& containe
       std::move(particles), *forces_,
       mpm::StepperOptions{time_step_.dt, numerics_.dx, 0.5, damping});
   stepper_->add_rule(std::make_unique<mpm::ClampRule>(container));
+  if (const auto face = container_face()) {
+    // The face moves with the rim: its offset from the cap's frame is the clamped particles'
+    // mean displacement, which is container.z plus what the grounding shifted.
+    const auto& X = body_->mesh().nodes;
+    const auto& x = stepper_->particles().x;
+    double shift = 0.0;
+    for (int a : body_->mesh().clamped) shift += x.z[a] - X.z[a];
+    shift /= static_cast<double>(body_->mesh().clamped.size());
+    face_ = &dynamic_cast<mpm::ContainerFaceRule&>(stepper_->add_rule(
+        std::make_unique<mpm::ContainerFaceRule>(container, *face, shift - container.z)));
+  }
   plate_ = &dynamic_cast<mpm::PlateRule&>(stepper_->add_rule(std::make_unique<mpm::PlateRule>(mu)));
   stepper_->add_rigid_body(container);
+}
+
+std::optional<core::ContainerFace> MpmShell::container_face() const {
+  // A designer's own shell (shell.mesh) has no cone of its own to take the face from.
+  if (numerics_.user_mesh) return std::nullopt;
+  return core::container_face(numerics_.cap.R, numerics_.cap.h, numerics_.cap.phi);
 }
 
 void MpmShell::set_damping(double c) {

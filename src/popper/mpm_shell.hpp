@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "fem/body.hpp"
 #include "fem/explicit.hpp"
@@ -70,6 +71,8 @@ class MpmShell final : public ShellModel {
   [[nodiscard]] const mesh::Points& positions() const;
   [[nodiscard]] int chosen_threads() const;
   [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
+  // The container's face around the rim, for the generated cap (core::ContainerFace).
+  [[nodiscard]] std::optional<core::ContainerFace> container_face() const;
   void build_stepper(mpm::Particles particles, core::RigidBody& container, double mu,
                      double damping);
 
@@ -80,6 +83,7 @@ class MpmShell final : public ShellModel {
   std::unique_ptr<fem::ExplicitDriver> driver_;  // phases 1-2
   std::unique_ptr<mpm::Stepper> stepper_;        // from the grounding on
   mpm::PlateRule* plate_ = nullptr;
+  mpm::ContainerFaceRule* face_ = nullptr;  // absent for a designer's own shell
   mpm::TimeStep time_step_;
   double hole_area_ = 0.0;
   double depth_outer_ = 0.0;
