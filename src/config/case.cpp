@@ -36,7 +36,7 @@ constexpr KeySpec kKeys[] = {
     {"popper", "net_weight", "net-weight", Dimension::Force, true, std::nullopt, "", "0.48 N",
      "net weight mg: the popper's weight less the counterweight's",
      +[](Case& c) { return &c.popper.net_weight; }},
-    {"popper", "mass", "popper-mass", Dimension::Mass, false, 0.300,
+    {"popper", "mass", "popper-mass", Dimension::Mass, false, kDefaultPopperMass,
      "300 g (net_weight / g when heavier: no counterweight)", "300 g",
      "the popper's own mass: shell + container + the rail's shafts (an estimate, docs/popper.md)",
      +[](Case& c) { return &c.popper.mass; }},

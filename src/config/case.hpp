@@ -20,6 +20,8 @@
 namespace snapjump::config {
 
 inline constexpr double kStandardGravity = 9.80665;  // m/s^2
+// popper.mass when the case does not give it (docs/popper.md, "Assumptions") [kg].
+inline constexpr double kDefaultPopperMass = 0.300;
 
 struct Shell {
   double R = 0.0;    // mid-surface radius of curvature [m]
