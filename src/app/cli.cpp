@@ -16,7 +16,9 @@
 #include <string>
 #include <vector>
 
+#include "app/case_options.hpp"
 #include "app/compare_command.hpp"
+#include "app/design_command.hpp"
 #include "app/option_values.hpp"
 #include "app/plot_command.hpp"
 #include "app/run.hpp"
@@ -34,66 +36,6 @@
 
 namespace snapjump::app {
 namespace {
-
-// What the case's reader noticed (config::Case::bare_numbers, implausible), said before a command
-// works on the case: a bare number as a warning; a value outside what a popper can plausibly be
-// refused, or with `allow` a warning too.
-void say_readings(const config::Case& c, bool allow, std::ostream& err) {
-  for (const auto& w : c.bare_numbers) fmt::print(err, "warning: {}\n", w);
-  if (c.implausible.empty()) return;
-  if (allow) {
-    for (const auto& w : c.implausible) fmt::print(err, "warning: {} (allowed)\n", w);
-    return;
-  }
-  throw config::CaseError(fmt::format(
-      "the case lies outside what a popper can plausibly be (README.md, \"Plausible values\"); "
-      "--allow-implausible takes it as it is:\n  {}",
-      fmt::join(c.implausible, "\n  ")));
-}
-
-// Flags that set case keys, shared by the subcommands that read a case.
-struct CaseOptions {
-  std::string case_file;
-  std::map<std::string, std::string> values;  // case key -> text
-  bool allow_implausible = false;
-
-  void add_to(CLI::App& cmd) {
-    cmd.add_option("case", case_file,
-                   "case file (TOML); without it, the built-in default case (the paper's "
-                   "Fig. 2(a) popper)")
-        ->check(CLI::ExistingFile);
-    for (const auto& k : config::quantity_keys()) {
-      const auto key = fmt::format("{}.{}", k.table, k.name);
-      auto help = fmt::format(
-          "{} [{}], e.g. {}; {}overrides {}", k.help, units::dimension_name(k.dimension), k.example,
-          k.default_text.empty() ? std::string() : fmt::format("default {}; ", k.default_text),
-          key);
-      cmd.add_option_function<std::string>(
-             fmt::format("--{}", k.flag), [this, key](const std::string& v) { values[key] = v; },
-             help)
-          ->group(fmt::format("Case values ([{}])", k.table))
-          ->type_name("VALUE");
-    }
-    cmd.add_flag("--allow-implausible", allow_implausible,
-                 "take values outside what a popper can plausibly be (R or h of metres, E of "
-                 "pascals: README.md, \"Plausible values\") as they are, with a warning");
-  }
-
-  // The case, its bare numbers said on err; throws config::CaseError for an implausible one.
-  [[nodiscard]] config::Case load(std::ostream& err) const {
-    std::vector<config::Override> overrides;
-    for (const auto& k : config::quantity_keys()) {
-      const auto key = fmt::format("{}.{}", k.table, k.name);
-      if (const auto it = values.find(key); it != values.end()) {
-        overrides.push_back({key, it->second, fmt::format("--{}", k.flag)});
-      }
-    }
-    auto c = case_file.empty() ? config::default_case(overrides)
-                               : config::load_case_file(case_file, overrides);
-    say_readings(c, allow_implausible, err);
-    return c;
-  }
-};
 
 // The reverse snap from the axisymmetric branch, or why it is not known; never fails predict.
 std::optional<popper::ReverseSnap> reverse_snap_of(const config::Case& c, std::string& why) {
@@ -654,7 +596,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App app{
       "snapjump: predicts and simulates how elastic shells snap and jump.\n"
       "Start with `snapjump predict` (the theory for the paper's default popper), then "
-      "`snapjump run` (its simulated jump, about 6 minutes on two cores)."};
+      "`snapjump run` (its simulated jump, about 2 minutes on two cores)."};
   app.name("snapjump");
   app.require_subcommand(1);
   app.set_version_flag("--version", "snapjump 0.1.0");
@@ -785,6 +727,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   SweepCommand sweep_cmd(app);
   PlotCommand plot_cmd(app);
   CompareCommand compare_cmd(app);
+  DesignCommand design_cmd(app);
 
   const auto args = with_units_joined(argc, argv);
   std::vector<const char*> words;
@@ -834,6 +777,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     if (sweep_cmd.parsed()) return sweep_cmd.run(out, err);
     if (plot_cmd.parsed()) return plot_cmd.run(out, err);
     if (compare_cmd.parsed()) return compare_cmd.run(out, err);
+    if (design_cmd.parsed()) return design_cmd.run(out, err);
     if (run_cmd->parsed()) {
       if (!pause_at.empty()) {
         const units::UnitParser parser;

@@ -30,6 +30,27 @@ int failed_runs(const sweep::Spec& spec) {
 
 }  // namespace
 
+int run_here(const sweep::Spec& spec, sweep::ExecOptions options, int jobs, bool retry_failed,
+             std::ostream& out) {
+  const auto todo = sweep::runs_to_do(spec, retry_failed);
+  const int cores = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  options.jobs = jobs > 0 ? jobs : std::max(1, cores / options.threads);
+  fmt::print(out,
+             "sweep {}: {} runs, {} to do ({} already finished or failed), {} at a time with {} "
+             "thread(s) each; folder {}\n",
+             spec.file.string(), spec.runs.size(), todo.size(), spec.runs.size() - todo.size(),
+             options.jobs, options.threads, spec.output.string());
+  std::size_t counter = 0;
+  const auto report = sweep::execute(
+      spec, todo, [&] { return std::optional(counter++); }, options, out);
+  const fs::path table = spec.output / "sweep.csv";
+  const int with_result = sweep::write_table(spec, table);
+  const int failed = failed_runs(spec);
+  fmt::print(out, "sweep done: {} of {} runs have a result, {} failed ({} now); table {}\n",
+             with_result, spec.runs.size(), failed, report.failed, table.string());
+  return failed > 0 ? kExitFailure : kExitOk;
+}
+
 SweepCommand::SweepCommand(CLI::App& app) {
   cmd_ = app.add_subcommand(
       "sweep",
@@ -146,22 +167,7 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
       fs::create_directories(spec.output);
       const io::FolderLock lock(spec.output, "sweep.lock", "the sweep folder");
       sweep::prepare_folder(spec);
-      const auto todo = sweep::runs_to_do(spec, retry_failed_);
-      const int cores = static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
-      options.jobs = jobs_ > 0 ? jobs_ : std::max(1, cores / threads_);
-      fmt::print(out,
-                 "sweep {}: {} runs, {} to do ({} already finished or failed), {} at a time "
-                 "with {} thread(s) each; folder {}\n",
-                 file_, spec.runs.size(), todo.size(), spec.runs.size() - todo.size(), options.jobs,
-                 options.threads, spec.output.string());
-      std::size_t counter = 0;
-      const auto report = sweep::execute(
-          spec, todo, [&] { return std::optional(counter++); }, options, out);
-      const int with_result = sweep::write_table(spec, table);
-      const int failed = failed_runs(spec);
-      fmt::print(out, "sweep done: {} of {} runs have a result, {} failed ({} now); table {}\n",
-                 with_result, spec.runs.size(), failed, report.failed, table.string());
-      return failed > 0 ? kExitFailure : kExitOk;
+      return run_here(spec, options, jobs_, retry_failed_, out);
     }
     const int with_result = sweep::write_table(spec, table);
     fmt::print(out, "{} of {} runs have a result; table {}\n", with_result, spec.runs.size(),

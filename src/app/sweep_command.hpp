@@ -3,11 +3,20 @@
 #include <ostream>
 #include <string>
 
+#include "sweep/executor.hpp"
+#include "sweep/sweep.hpp"
+
 namespace CLI {
 class App;
 }
 
 namespace snapjump::app {
+
+// Runs the sweep's runs that are still to do (all but the finished, and the failed unless
+// retry_failed) in this process, `jobs` at a time (0: the cores over the threads per run), and
+// writes its table; the caller holds the folder's lock. Returns the exit status.
+int run_here(const sweep::Spec& spec, sweep::ExecOptions options, int jobs, bool retry_failed,
+             std::ostream& out);
 
 class SweepCommand {
  public:

@@ -12,7 +12,7 @@ namespace snapjump::theory {
 namespace {
 
 // The theory's thin, shallow shell: beyond about h / R = 0.19 its ranges are not defined
-// (Prediction::beyond_range); the search stays below.
+// (Prediction::beyond_range); no search goes past this.
 constexpr double kMaxThickness = 0.18;
 
 std::vector<double> log_grid(double lo, double hi, int n) {
@@ -89,11 +89,14 @@ void check_space(const config::Case& base, const DesignTargets& t, const DesignS
                     "searched {:.4g} mm",
                     1e3 * s.max_footprint, 1e3 * R_max, 1e3 * s.min_R));
   }
-  if (s.min_h >= kMaxThickness * R_max) {
+  if (!(s.max_h_over_R > 0.0) || s.max_h_over_R > kMaxThickness) {
+    bad(fmt::format("the thickest shell h / R must lie in (0, {}]", kMaxThickness));
+  }
+  if (s.min_h >= s.max_h_over_R * R_max) {
     bad(
         fmt::format("the thinnest wall {:.4g} mm is too thick for the theory at the largest R "
-                    "the footprint allows ({:.4g} mm: h / R must stay below {})",
-                    1e3 * s.min_h, 1e3 * R_max, kMaxThickness));
+                    "the footprint allows ({:.4g} mm, h / R at most {})",
+                    1e3 * s.min_h, 1e3 * R_max, s.max_h_over_R));
   }
   if (t.H && (!(t.H->lo > 0.0) || (t.H->hi && *t.H->hi < t.H->lo))) bad("H's target must be > 0");
   if (t.F_star && (!(t.F_star->lo > 0.0) || (t.F_star->hi && *t.F_star->hi < t.F_star->lo))) {
@@ -111,6 +114,8 @@ double score(const Design& d, Rank r) {
       return d.prediction.shell_mass;
     case Rank::Margin:
       return -d.prediction.jump_margin.lo;
+    case Rank::Highest:
+      return -d.prediction.H.lo;
   }
   return 0.0;
 }
@@ -143,6 +148,7 @@ std::optional<Rank> parse_rank(const std::string& s) {
   if (s == "smallest") return Rank::Smallest;
   if (s == "lightest") return Rank::Lightest;
   if (s == "margin") return Rank::Margin;
+  if (s == "highest") return Rank::Highest;
   return std::nullopt;
 }
 
@@ -154,6 +160,8 @@ std::string to_string(Rank r) {
       return "lightest shell";
     case Rank::Margin:
       return "largest margin F* / mg";
+    case Rank::Highest:
+      return "highest jump (H's lower bound)";
   }
   return "";
 }
@@ -183,8 +191,8 @@ DesignResult design(const config::Case& base, const DesignTargets& targets,
   DesignResult result;
   std::vector<Design> feasible;
   for (const double R : log_grid(space.min_R, R_max, space.grid)) {
-    if (space.min_h >= kMaxThickness * R) continue;
-    for (const double h : log_grid(space.min_h, kMaxThickness * R, space.grid)) {
+    if (space.min_h >= space.max_h_over_R * R) continue;
+    for (const double h : log_grid(space.min_h, space.max_h_over_R * R, space.grid)) {
       for (const double mg : weights) {
         Design d;
         d.R = R;

@@ -36,13 +36,18 @@ struct DesignSpace {
   double max_footprint = 0.1;  // the rim's diameter 2 R sin(phi) at most [m]
   double min_h = 0.5e-3;       // the thinnest wall that can be cast [m]
   double min_R = 5e-3;         // the smallest shell radius searched [m]
+  // The thickest shell searched, h / R: the paper's fabricated shells reach 0.1 (25, 2.5) mm,
+  // and the thin-shell theory is least to be trusted beyond what it was checked on; at most 0.18
+  // (about 0.19 the theory's range ends, Prediction::beyond_range).
+  double max_h_over_R = 0.1;
   // Zoelly's p_c at most this: the pump must buckle the shell [Pa]; absent: no limit.
   std::optional<double> max_suction;
   int grid = 160;  // points per searched dimension (log-spaced)
 };
 
-enum class Rank { Smallest, Lightest, Margin };
-std::optional<Rank> parse_rank(const std::string& s);  // "smallest", "lightest", "margin"
+enum class Rank { Smallest, Lightest, Margin, Highest };
+// "smallest", "lightest", "margin", "highest" (H's lower bound).
+std::optional<Rank> parse_rank(const std::string& s);
 std::string to_string(Rank r);
 
 struct Design {
@@ -69,9 +74,9 @@ struct DesignResult {
 // popper's mass as the case's rule gives it, when the base did not set it).
 config::Case design_case(const config::Case& base, double R, double h, double net_weight);
 
-// Searches a log-spaced grid over R (min_R to the footprint's), h (min_h to the theory's range
-// h / R < 0.15) and, when it is a range, the net weight; returns the best `count` designs.
-// Throws config::CaseError for a search space that makes no sense (bounds inverted, negative).
+// Searches a log-spaced grid over R (min_R to the footprint's), h (min_h to max_h_over_R R) and,
+// when it is a range, the net weight; returns the best `count` designs. Throws config::CaseError
+// for a search space that makes no sense (bounds inverted, negative).
 DesignResult design(const config::Case& base, const DesignTargets& targets,
                     const DesignSpace& space, Rank rank, int count);
 

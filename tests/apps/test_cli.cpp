@@ -1,4 +1,5 @@
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -391,6 +392,37 @@ TEST(Cli, CompareARecordWithARunFolder) {
   EXPECT_EQ(no_case.code, kExitBadInput);
   EXPECT_NE(no_case.err.find("no case.toml"), std::string::npos) << no_case.err;
   fs::remove_all(dir);
+}
+
+// Every design `snapjump design` lists meets its target when its R, h and net weight are fed
+// back to `snapjump predict`; an infeasible target names what binds; a bad constraint names the
+// flag.
+TEST(Cli, DesignsMeetTheirTargetsThroughPredict) {
+  const auto r = run({"design", "--jump-height", "50mm", "--net-weight", "1N", "--E", "1.2MPa",
+                      "--footprint", "80mm", "--count", "3", "--no-branch", "--format", "json"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_FALSE(j["designs"].empty());
+  for (const auto& d : j["designs"]) {
+    const auto p = run({"predict", "--R", fmt::format("{}m", d["R"].get<double>()), "--h",
+                        fmt::format("{}m", d["h"].get<double>()), "--net-weight", "1N", "--E",
+                        "1.2MPa", "--no-branch", "--format", "json"});
+    ASSERT_EQ(p.code, kExitOk) << p.err;
+    const auto q = nlohmann::json::parse(p.out);
+    EXPECT_GE(q["quantities"]["H"]["lower"].get<double>(), 0.050);
+    EXPECT_EQ(q["outcome_text"], "Jump");
+    EXPECT_LE(d["footprint"].get<double>(), 0.080 + 1e-12);
+  }
+  const auto none = run({"design", "--jump-height", "100m", "--no-branch"});
+  EXPECT_EQ(none.code, kExitBadInput);
+  EXPECT_NE(none.err.find("misses by"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("H's lower bound"), std::string::npos) << none.err;
+  const auto bad = run({"design", "--footprint", "-1mm"});
+  EXPECT_EQ(bad.code, kExitBadInput);
+  EXPECT_NE(bad.err.find("--footprint"), std::string::npos) << bad.err;
+  const auto unit = run({"design", "--jump-height", "50N"});
+  EXPECT_EQ(unit.code, kExitBadInput);
+  EXPECT_NE(unit.err.find("--jump-height"), std::string::npos) << unit.err;
 }
 
 TEST(Cli, AnalyzeRejectsAWrongUnitOnAFlag) {

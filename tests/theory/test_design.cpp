@@ -78,6 +78,10 @@ TEST(Design, RankingsAndARangeTarget) {
   ASSERT_FALSE(margin.designs.empty());
   EXPECT_GE(margin.designs[0].prediction.jump_margin.lo,
             light.designs[0].prediction.jump_margin.lo);
+  const auto high = design(b, t, s, Rank::Highest, 3);
+  ASSERT_FALSE(high.designs.empty());
+  EXPECT_GE(high.designs[0].prediction.H.lo, light.designs[0].prediction.H.lo);
+  for (const auto& d : high.designs) expect_meets(d, b, t, s);
 }
 
 TEST(Design, AnInfeasibleTargetSaysWhatBindsAndByHowMuch) {
