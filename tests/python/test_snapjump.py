@@ -37,7 +37,7 @@ def test_predict_is_the_command_lines_json():
 def test_errors_carry_the_command_lines_message():
     with pytest.raises(snapjump.InputError, match=r"a length"):
         snapjump.predict(R="30 N")
-    with pytest.raises(snapjump.InputError, match=r"unknown option --zzz"):
+    with pytest.raises(snapjump.InputError, match=r"unknown case value .zzz.; the case values are R, h"):
         snapjump.predict(zzz=1)
     with pytest.raises(snapjump.InputError):
         snapjump.contact(nu=0.7)
@@ -144,3 +144,53 @@ def test_ctrl_c_stops_a_run_that_can_be_resumed(tmp_path):
     r = snapjump.read_run(folder)
     assert r["summary"]["status"].startswith("capped at 0.05 s")
     assert r["series"]["t"][-1] == pytest.approx(50e-3, abs=2e-4)
+
+
+def test_predict_over_a_grid_of_designs():
+    h = np.linspace(1e-3, 3e-3, 5)[:, None]
+    mg = np.array([0.1, 0.48, 2.0, 20.0])
+    g = snapjump.predict(h=h, net_weight=mg, R="30 mm")
+    q = g["quantities"]
+    assert q["p_c"]["lower"].shape == (5, 4) and g["outcome"].shape == (5, 4)
+    E, R, nu = 1.2e6, 30e-3, 0.45
+    hh, mm = np.broadcast_arrays(h, mg)
+    np.testing.assert_allclose(q["p_c"]["lower"], 2 * E * (hh / R) ** 2 / np.sqrt(3 * (1 - nu * nu)),
+                               rtol=1e-12)
+    np.testing.assert_allclose(q["F_c"]["upper"], E * hh ** 3 / R, rtol=1e-12)
+    np.testing.assert_allclose(g["case"]["net_weight"], mm, rtol=0)
+    np.testing.assert_allclose(q["jump_margin"]["lower"], q["F_star"]["lower"] / mm, rtol=1e-12)
+    # Each design is the scalar prediction of the same popper.
+    for i, j in [(0, 0), (2, 1), (4, 3)]:
+        p = snapjump.predict(h=float(hh[i, j]), net_weight=float(mm[i, j]), R="30 mm")
+        assert g["outcome"][i, j] == p["outcome_text"]
+        for key in ("F_star", "H", "t_star", "delta_p_j"):
+            assert q[key]["lower"][i, j] == pytest.approx(p["quantities"][key]["lower"], rel=1e-12)
+            assert q[key]["upper"][i, j] == pytest.approx(p["quantities"][key]["upper"], rel=1e-12)
+    # A heavy popper does not jump: F* / mg below 1 at both bounds.
+    assert "Jump" not in g["outcome"][0, 3]
+    # Lists broadcast too, on a case given as a dict; a grid of 10^4 designs in one call.
+    big = snapjump.predict({"shell": {"R": "30 mm", "h": "2 mm"}, "material": {"E": "1.2 MPa"},
+                            "popper": {"net_weight": "0.48 N"}},
+                           h=np.linspace(1e-3, 3e-3, 100)[:, None], mu=[0.1, 0.3],
+                           net_weight=np.linspace(0.1, 1.0, 100)[:, None, None])
+    assert big["quantities"]["F_star"]["lower"].shape == (100, 100, 2)
+    assert np.all(np.isfinite(big["quantities"]["F_star"]["lower"]))
+    np.testing.assert_array_equal(big["case"]["mu"][3, 7], [0.1, 0.3])
+
+
+def test_a_grid_names_the_design_it_refuses():
+    with pytest.raises(snapjump.InputError, match=r"design \[1\]: h\[1\].*smaller than shell.R"):
+        snapjump.predict(h=[1e-3, 0.05])
+    with pytest.raises(ValueError, match="takes numbers in SI"):
+        snapjump.predict(h=["1 mm", "2 mm"])
+    with pytest.raises(snapjump.InputError, match="plausibly"):
+        snapjump.predict(R=[0.03, 3.0])
+    p = snapjump.predict(R=[0.03, 3.0], h=[0.002, 0.2], allow_implausible=True)
+    assert p["quantities"]["r_c"]["lower"][1] == pytest.approx(math.sqrt(3.0 * 0.2))
+
+
+def test_version_is_the_projects():
+    import re
+    with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
+        version = re.search(r"project\(snapjump VERSION ([0-9.]+)", f.read()).group(1)
+    assert snapjump.__version__ == version
