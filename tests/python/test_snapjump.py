@@ -194,3 +194,11 @@ def test_version_is_the_projects():
     with open(os.path.join(SOURCE, "CMakeLists.txt")) as f:
         version = re.search(r"project\(snapjump VERSION ([0-9.]+)", f.read()).group(1)
     assert snapjump.__version__ == version
+
+
+def test_the_namespace_is_the_api():
+    dunders = {n for n in dir(snapjump) if n.startswith("__") and n.endswith("__")}
+    assert set(dir(snapjump)) - dunders == set(snapjump.__all__)
+    for name in ("csv", "json", "os", "re", "tempfile", "np"):
+        assert not hasattr(snapjump, name)
+    assert snapjump.predict.__module__ == "snapjump"

@@ -1,0 +1,334 @@
+"""The implementation of the package snapjump (its API and documentation: __init__.py)."""
+import csv
+import json
+import os
+import re
+import tempfile
+
+from . import _snapjump
+
+__version__ = _snapjump.__version__
+
+
+class SnapjumpError(RuntimeError):
+    """snapjump failed; the message is the command line's."""
+
+
+class InputError(SnapjumpError, ValueError):
+    """Bad input (a case value, a unit, a file); the message names it, as the command line's."""
+
+
+def _flag(key):
+    # net_weight -> --net-weight; a dotted case key (shell.R) -> its flag's name (R).
+    return "--" + key.split(".")[-1].replace("_", "-")
+
+
+def _value(v):
+    if isinstance(v, bool) or v is None:
+        raise InputError(f"{v!r} is not a quantity; give a number (SI) or text with a unit")
+    return v if isinstance(v, str) else repr(float(v))
+
+
+def _call(args, progress=None):
+    code, out, err = _snapjump.cli([str(a) for a in args], progress)
+    if code == 0:
+        return out
+    message = "\n".join(line[len("error: "):] if line.startswith("error: ") else line
+                        for line in err.strip().splitlines()
+                        if line and not line.startswith("Run with --help")) or out.strip()
+    raise (InputError if code == 2 else SnapjumpError)(message)
+
+
+def _toml_text(case):
+    # A case given as a dict of tables, {"shell": {"R": "30 mm"}, "title": "..."}, as TOML text.
+    def value(v):
+        if isinstance(v, bool):
+            return "true" if v else "false"
+        if isinstance(v, (int, float)):
+            return repr(v)
+        return json.dumps(str(v))  # a TOML basic string: JSON's escapes are TOML's
+    lines = [f"{k} = {value(v)}" for k, v in case.items() if not isinstance(v, dict)]
+    for table, keys in case.items():
+        if isinstance(keys, dict):
+            lines.append(f"[{table}]")
+            for k, v in keys.items():
+                if table == "shell" and k == "mesh":  # relative to here, not to the temporary file
+                    v = os.path.abspath(os.fspath(v))
+                lines.append(f"{k} = {value(v)}")
+    return "\n".join(lines) + "\n"
+
+
+class _CaseFile:
+    """The case as a file for the command line: a path as given, a dict written to a temporary
+    file (removed afterwards)."""
+
+    def __init__(self, case):
+        self.case, self.tmp = case, None
+
+    def __enter__(self):
+        if self.case is None:
+            return []
+        if isinstance(self.case, dict):
+            fd, self.tmp = tempfile.mkstemp(suffix=".toml", prefix="snapjump-case-")
+            with os.fdopen(fd, "w") as f:
+                f.write(_toml_text(self.case))
+            return [self.tmp]
+        return [os.fspath(self.case)]
+
+    def __exit__(self, *exc):
+        if self.tmp:
+            os.remove(self.tmp)
+
+
+def _case_args(case_files, values):
+    args = list(case_files)
+    for key, v in values.items():
+        args += [_flag(key), _value(v)]
+    return args
+
+
+def _keyword_keys():
+    # keyword (R, net_weight, popper_mass) and dotted key (shell.R) -> the case's dotted key.
+    out = {}
+    for k in _snapjump.case_keys:
+        out[k["flag"].replace("-", "_")] = k["key"]
+        out[k["key"]] = k["key"]
+    return out
+
+
+def _case_key(keyword):
+    keys = _keyword_keys()
+    if keyword not in keys:
+        names = ", ".join(k["flag"].replace("-", "_") for k in _snapjump.case_keys)
+        raise InputError(f"unknown case value '{keyword}'; the case values are {names}")
+    return keys[keyword]
+
+
+def _case_text(case):
+    # The case as (TOML text, its name in messages) for the module; None: the built-in default.
+    if case is None:
+        return None, "built-in default case"
+    if isinstance(case, dict):
+        return _toml_text(case), "the case given as a dict"
+    path = os.fspath(case)
+    if not os.path.isfile(path):
+        raise FileNotFoundError(2, "no such case file", path)
+    with open(path) as f:
+        return f.read(), path
+
+
+def _predict_many(case, values, allow_implausible):
+    import numpy as np
+    fixed, names, arrays = [], [], []
+    for name, v in values.items():
+        key = _case_key(name)
+        if np.ndim(v) == 0 and not isinstance(v, np.ndarray):
+            fixed.append((key, _value(v), name))
+            continue
+        try:
+            arrays.append(np.asarray(v, dtype=float))
+        except (TypeError, ValueError):
+            raise InputError(f"{name}: an array of designs takes numbers in SI, "
+                             f"e.g. {name}=[0.001, 0.002]") from None
+        names.append((key, name))
+    shape = np.broadcast_shapes(*(a.shape for a in arrays))
+    flat = [np.ascontiguousarray(np.broadcast_to(a, shape)).ravel() for a in arrays]
+    text, source = _case_text(case)
+    try:
+        r = _snapjump.predict_many(text, source, fixed, [k for k, _ in names],
+                                   [n for _, n in names], flat, list(shape), allow_implausible)
+    except ValueError as e:
+        raise InputError(str(e)) from None
+    for q in r["quantities"].values():
+        q["lower"], q["upper"] = q["lower"].reshape(shape), q["upper"].reshape(shape)
+    r["case"] = {k: a.reshape(shape) for k, a in r["case"].items()}
+    r["outcome"] = np.array(r["outcome"], dtype=str).reshape(shape)
+    r["outcome_text"] = r["outcome"]
+    r["beyond_range"] = np.array(r["beyond_range"], dtype=str).reshape(shape)
+    r["units"] = "SI"
+    return r
+
+
+def predict(case=None, allow_implausible=False, **values):
+    """The closed-form theory for a popper, or for a grid of designs at once.
+
+    case: a case file (path), a dict of its tables ({"shell": {"R": "30 mm", "h": "2 mm"}, ...},
+        the same keys and unit strings as the TOML files), or None (the paper's default popper,
+        (R, h) = (30, 2.0) mm, net weight 0.48 N).
+    allow_implausible: take values outside what a popper can plausibly be (README.md,
+        "Plausible values") as they are.
+    **values: case values on top of the case, by name (R, h, phi, E, nu, rho, net_weight,
+        popper_mass, wire_stiffness, mu, container_volume, p0, alpha_n, beta_n, delta_p_j,
+        delta_p_j_over_pc, ...) or dotted key ("shell.R"): text with a unit ("30 mm") or a
+        number in SI (0.03 for 30 mm; phi in radians).
+
+    Scalar values return the command line's `snapjump predict --format json` as a dict (SI):
+    "case" (the case's values), "quantities" ({name: {"lower", "upper", "unit"}}: p_c, F_c,
+    F_star, H, ...), "outcome" (the outcomes the theory allows, a list), "outcome_text",
+    "beyond_range", "reverse_snap".
+
+    Any value given as an array (or a list) of numbers in SI makes it a grid of designs: the
+    arrays broadcast as numpy's do, and each number of the result becomes an array of their
+    shape: "quantities" ({name: {"lower": array, "upper": array, "unit"}}), "case" ({key:
+    array}, the case's numbers), "outcome" and "outcome_text" (arrays of the outcome's text:
+    "Jump", "Jump or Snap", "unknown: ..."), "beyond_range" (array of text, "" inside the
+    theory's range). Each design is checked as a case file is; an invalid one raises
+    InputError naming its position. The grid is evaluated in C++ in one loop: 10^4 designs
+    take about 0.4 s (the first call in a process adds about 0.6 s for the contact solver's
+    constants), measured with
+
+        PYTHONPATH=build/python /usr/bin/python3 -m timeit -s "import snapjump, numpy as np; \\
+            snapjump.predict(h=0.002)" \\
+            "snapjump.predict(h=np.linspace(1e-3, 3e-3, 100)[:, None], \\
+                              net_weight=np.linspace(0.1, 1, 100))"
+
+    Raises FileNotFoundError for a missing case file, InputError (a ValueError) for a bad
+    value, naming it.
+    """
+    if any(not isinstance(v, str) and hasattr(v, "__len__") for v in values.values()):
+        return _predict_many(case, values, allow_implausible)
+    for name in values:
+        _case_key(name)
+    text_args = ["--allow-implausible"] if allow_implausible else []
+    if case is not None and not isinstance(case, dict):
+        _case_text(case)  # a missing file raises FileNotFoundError
+    with _CaseFile(case) as files:
+        return json.loads(_call(["predict", *_case_args(files, values), *text_args,
+                                 "--format", "json"]))
+
+
+def contact(nu=0.5):
+    """The shell-plane contact solver's constants and the prefactor bounds at Poisson's ratio nu."""
+    return json.loads(_call(["contact", "--nu", repr(float(nu)), "--format", "json"]))
+
+
+def _write_columns(columns, path):
+    names = list(columns.keys())
+    if "t" not in names or "F" not in names:
+        raise InputError(f"the columns need t and F (the plate force); given: {', '.join(names)}")
+    data = [list(columns[n]) for n in names]
+    rows = len(data[0])
+    if any(len(d) != rows for d in data):
+        raise InputError("the columns have different lengths")
+    with open(path, "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(names)
+        for i in range(rows):
+            w.writerow([d[i] if isinstance(d[i], str) else repr(float(d[i])) for d in data])
+
+
+def analyze(data, case=None, R=None, complete=False, force_offset=None, columns=None, units=None):
+    """The characteristic quantities and the outcome of a time series (docs/analysis.md), as
+    `snapjump analyze --format json`. `data` is a CSV file (any format the command line reads), a
+    dict of columns (SI) or a pandas DataFrame with columns t and F and any of z, r, w, e,
+    delta_p, contact. R with its unit ("30 mm"); columns={"t": "Time (s)"} and units={"F": "mN"}
+    as --column and --unit."""
+    args = ["analyze"]
+    tmp = None
+    if isinstance(data, (str, os.PathLike)):
+        args.append(os.fspath(data))
+    else:
+        if hasattr(data, "to_dict") and hasattr(data, "columns"):  # a pandas DataFrame
+            data = {str(c): data[c].tolist() for c in data.columns}
+        fd, tmp = tempfile.mkstemp(suffix=".csv", prefix="snapjump-")
+        os.close(fd)
+        args.append(tmp)
+    try:
+        if tmp:
+            _write_columns(dict(data), tmp)
+        if case is not None:
+            args += ["--case", os.fspath(case)]
+        if R is not None:
+            args += ["--R", _value(R)]
+        if force_offset is not None:
+            args += ["--force-offset", _value(force_offset)]
+        if complete:
+            args.append("--complete")
+        for k, v in (columns or {}).items():
+            args += ["--column", f"{k}={v}"]
+        for k, v in (units or {}).items():
+            args += ["--unit", f"{k}={v}"]
+        return json.loads(_call(args + ["--format", "json"]))
+    finally:
+        if tmp:
+            os.remove(tmp)
+
+
+def run(case=None, output=None, resolution=None, model=None, end_time=None, resume=None,
+        progress=None, **values):
+    """Simulates the popper in this process (`snapjump run`) and returns its folder. progress is
+    called with each line the run prints (progress and results); Ctrl-C stops the run with a checkpoint past the release
+    (KeyboardInterrupt; continue with run(resume=folder)). end_time caps the simulated time (the
+    run ends at the apex of the flight, at the latest there); with resume, a later cap continues a
+    run that went to its own."""
+    with _CaseFile(None if resume is not None else case) as files:
+        if resume is not None:
+            args = ["run", "--resume", os.fspath(resume)]
+            if end_time is not None:
+                args += ["--end-time", _value(end_time)]
+        else:
+            args = ["run", *_case_args(files, values)]
+            if output is not None:
+                args += ["--output", os.fspath(output)]
+            if resolution is not None:
+                args += ["--resolution", resolution]
+            if model is not None:
+                args += ["--model", model]
+            if end_time is not None:
+                args += ["--end-time", _value(end_time)]
+        out = _call(args, progress)
+    if resume is not None:
+        return os.fspath(resume)
+    m = re.search(r"^\s*output\s+(.+?)(?: \(that is .*\))?$", out, re.MULTILINE)
+    if not m:
+        raise SnapjumpError("snapjump run did not say where it wrote:\n" + out)
+    return m.group(1).strip()
+
+
+def _table(path):
+    """A CSV table as {column: numpy array} (text columns stay lists), and a pandas DataFrame
+    beside it when pandas is installed."""
+    import numpy as np
+    with open(path, newline="") as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
+    if not rows:
+        raise InputError(f"{path}: empty")
+    header, body = rows[0], rows[1:]
+    out = {}
+    for k, name in enumerate(header):
+        cells = [r[k] if k < len(r) else "" for r in body]
+        try:
+            out[name] = np.array([float(c) if c != "" else np.nan for c in cells])
+        except ValueError:
+            out[name] = cells
+    try:
+        import pandas as pd
+        frame = pd.DataFrame(out)
+    except ImportError:
+        frame = None
+    return out, frame
+
+
+def read_run(folder):
+    """A run's folder: {"series": {column: array}, "summary": dict, "case": text, "frame":
+    DataFrame or None}."""
+    folder = os.fspath(folder)
+    series_path = os.path.join(folder, "series.csv")
+    if not os.path.isfile(series_path):
+        raise InputError(f"{folder}: not a snapjump run folder (no series.csv)")
+    series, frame = _table(series_path)
+    with open(os.path.join(folder, "summary.json")) as f:
+        summary = json.load(f)
+    case_path = os.path.join(folder, "case.toml")
+    case_text = open(case_path).read() if os.path.isfile(case_path) else None
+    return {"series": series, "summary": summary, "case": case_text, "frame": frame}
+
+
+def read_sweep(folder):
+    """A sweep's folder: {"table": {column: array}, "frame": DataFrame or None}."""
+    folder = os.fspath(folder)
+    path = folder if folder.endswith(".csv") else os.path.join(folder, "sweep.csv")
+    if not os.path.isfile(path):
+        raise InputError(f"{folder}: no sweep.csv (run `snapjump sweep FILE --table-only`)")
+    table, frame = _table(path)
+    return {"table": table, "frame": frame}
