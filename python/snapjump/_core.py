@@ -29,6 +29,18 @@ def _value(v):
     return v if isinstance(v, str) else repr(float(v))
 
 
+# The command line's options that the functions take under another name.
+_KEYWORDS = {"column": "columns", "unit": "units", "no-figure": "figure=None",
+             "allow-implausible": "allow_implausible=True", "complete": "complete=True"}
+
+
+def _python_words(message):
+    """A command line's message in the functions' words: --net-weight -> net_weight."""
+    import re
+    return re.sub(r"(?<![\w-])--([A-Za-z][A-Za-z0-9-]*)",
+                  lambda m: _KEYWORDS.get(m.group(1), m.group(1).replace("-", "_")), message)
+
+
 def _call(args, progress=None):
     code, out, err = _snapjump.cli([str(a) for a in args], progress)
     if code == 0:
@@ -36,7 +48,15 @@ def _call(args, progress=None):
     message = "\n".join(line[len("error: "):] if line.startswith("error: ") else line
                         for line in err.strip().splitlines()
                         if line and not line.startswith("Run with --help")) or out.strip()
-    raise (InputError if code == 2 else SnapjumpError)(message)
+    raise (InputError if code == 2 else SnapjumpError)(_python_words(message))
+
+
+def _existing(path, what):
+    """path as text; FileNotFoundError naming `what` when nothing is there."""
+    path = os.fspath(path)
+    if not os.path.exists(path):
+        raise FileNotFoundError(2, f"no such {what}", path)
+    return path
 
 
 def _toml_text(case):
@@ -111,8 +131,7 @@ def _case_text(case):
     if isinstance(case, dict):
         return _toml_text(case), "the case given as a dict"
     path = os.fspath(case)
-    if not os.path.isfile(path):
-        raise FileNotFoundError(2, "no such case file", path)
+    _existing(path, "case file")
     with open(path) as f:
         return f.read(), path
 
@@ -226,7 +245,7 @@ def analyze(data, case=None, R=None, complete=False, force_offset=None, columns=
     args = ["analyze"]
     tmp = None
     if isinstance(data, (str, os.PathLike)):
-        args.append(os.fspath(data))
+        args.append(_existing(data, "record file"))
     else:
         if hasattr(data, "to_dict") and hasattr(data, "columns"):  # a pandas DataFrame
             data = {str(c): data[c].tolist() for c in data.columns}
@@ -237,7 +256,7 @@ def analyze(data, case=None, R=None, complete=False, force_offset=None, columns=
         if tmp:
             _write_columns(dict(data), tmp)
         if case is not None:
-            args += ["--case", os.fspath(case)]
+            args += ["--case", _existing(case, "case file")]
         if R is not None:
             args += ["--R", _value(R)]
         if force_offset is not None:
@@ -261,6 +280,12 @@ def run(case=None, output=None, resolution=None, model=None, end_time=None, resu
     (KeyboardInterrupt; continue with run(resume=folder)). end_time caps the simulated time (the
     run ends at the apex of the flight, at the latest there); with resume, a later cap continues a
     run that went to its own."""
+    for name in values:
+        _case_key(name)
+    if resume is not None:
+        _existing(resume, "run folder")
+    elif case is not None and not isinstance(case, dict):
+        _existing(case, "case file")
     with _CaseFile(None if resume is not None else case) as files:
         if resume is not None:
             args = ["run", "--resume", os.fspath(resume)]
@@ -312,10 +337,10 @@ def _table(path):
 def read_run(folder):
     """A run's folder: {"series": {column: array}, "summary": dict, "case": text, "frame":
     DataFrame or None}."""
-    folder = os.fspath(folder)
+    folder = _existing(folder, "run folder")
     series_path = os.path.join(folder, "series.csv")
     if not os.path.isfile(series_path):
-        raise InputError(f"{folder}: not a snapjump run folder (no series.csv)")
+        raise FileNotFoundError(2, "not a snapjump run folder (no series.csv)", series_path)
     series, frame = _table(series_path)
     with open(os.path.join(folder, "summary.json")) as f:
         summary = json.load(f)
@@ -326,9 +351,9 @@ def read_run(folder):
 
 def read_sweep(folder):
     """A sweep's folder: {"table": {column: array}, "frame": DataFrame or None}."""
-    folder = os.fspath(folder)
+    folder = _existing(folder, "sweep folder")
     path = folder if folder.endswith(".csv") else os.path.join(folder, "sweep.csv")
     if not os.path.isfile(path):
-        raise InputError(f"{folder}: no sweep.csv (run `snapjump sweep FILE --table-only`)")
+        raise FileNotFoundError(2, "no sweep table (a sweep's folder holds sweep.csv)", path)
     table, frame = _table(path)
     return {"table": table, "frame": frame}

@@ -102,7 +102,7 @@ def test_a_short_run_in_process_with_progress_and_arrays(tmp_path):
     assert np.all(np.diff(t) > 0)
     assert r["summary"]["status"].startswith("capped at 0.005 s")
     assert any(line.strip().startswith("prepared") for line in lines)
-    with pytest.raises(snapjump.InputError, match="not a snapjump run folder"):
+    with pytest.raises(FileNotFoundError, match="not a snapjump run folder"):
         snapjump.read_run(tmp_path)
 
 
@@ -202,3 +202,24 @@ def test_the_namespace_is_the_api():
     for name in ("csv", "json", "os", "re", "tempfile", "np"):
         assert not hasattr(snapjump, name)
     assert snapjump.predict.__module__ == "snapjump"
+
+
+def test_missing_files_and_bad_values_in_pythons_words(tmp_path):
+    missing = tmp_path / "nowhere.toml"
+    for call in (lambda: snapjump.predict(missing), lambda: snapjump.run(missing),
+                 lambda: snapjump.analyze(tmp_path / "nowhere.csv"),
+                 lambda: snapjump.read_run(tmp_path / "nowhere"),
+                 lambda: snapjump.read_sweep(tmp_path / "nowhere"),
+                 lambda: snapjump.run(resume=tmp_path / "nowhere")):
+        with pytest.raises(FileNotFoundError, match="nowhere"):
+            call()
+    with pytest.raises(FileNotFoundError, match="series.csv"):
+        snapjump.read_run(tmp_path)
+    for call, words in ((lambda: snapjump.predict(net_weight="0.5 m"), "net_weight"),
+                        (lambda: snapjump.predict(R="30 N"), "R: shell.R"),
+                        (lambda: snapjump.predict(R="3 m"), "allow_implausible=True"),
+                        (lambda: snapjump.predict(popper_mass="1 g"), "popper.mass"),
+                        (lambda: snapjump.contact(nu=0.7), "nu")):
+        with pytest.raises(ValueError, match=words) as e:
+            call()
+        assert isinstance(e.value, snapjump.InputError) and "--" not in str(e.value)
