@@ -4,8 +4,10 @@
 #include <udunits2.h>
 
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <system_error>
 
@@ -85,6 +87,121 @@ LeadingNumber leading_number(std::string_view s) {
   return n;
 }
 
+// The unit text may be a product of units and their small integer powers, nothing else: UDUNITS
+// also reads numbers as scale factors ("mm 2", "m -2"), offsets ("mm @ 5", "s since 2000-01-01")
+// and logarithms ("lg(re 1 mW)"), and an exponent too large for an int wraps around.
+constexpr int kMaxExponent = 4;
+
+bool is_unit_char(unsigned char ch) {
+  return std::isalpha(ch) != 0 || ch == '_' || ch == '%' || ch == '\'' || ch == '"' || ch >= 0x80;
+}
+
+// The UTF-8 superscript digit or minus at s[i] (its value, 10 for the minus, and its length).
+std::optional<std::pair<int, std::size_t>> superscript(std::string_view s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  if (i + 1 < s.size() && byte(i) == 0xC2) {
+    if (byte(i + 1) == 0xB9) return std::pair{1, std::size_t{2}};
+    if (byte(i + 1) == 0xB2) return std::pair{2, std::size_t{2}};
+    if (byte(i + 1) == 0xB3) return std::pair{3, std::size_t{2}};
+  }
+  if (i + 2 < s.size() && byte(i) == 0xE2 && byte(i + 1) == 0x81) {
+    const unsigned char last = byte(i + 2);
+    if (last == 0xB0 || (last >= 0xB4 && last <= 0xB9)) {
+      return std::pair{last == 0xB0 ? 0 : last - 0xB0, std::size_t{3}};
+    }
+    if (last == 0xBB) return std::pair{10, std::size_t{3}};
+  }
+  return std::nullopt;
+}
+
+void check_exponent(std::string_view unit, std::string_view digits, bool negative) {
+  const bool small = !digits.empty() && digits.size() <= 2 &&
+                     std::stoi(std::string(digits)) <= kMaxExponent &&
+                     std::stoi(std::string(digits)) > 0;
+  if (!small) {
+    throw UnitError(fmt::format(
+        "the unit '{}' has the power {}{}; a unit's powers are whole numbers from -{} to {}", unit,
+        negative ? "-" : "", digits, kMaxExponent, kMaxExponent));
+  }
+}
+
+// Reads the power at s[i] after a unit name or ')': "^2", "**-1", "2", "-3" or superscripts.
+std::size_t skip_power(std::string_view unit, std::size_t i) {
+  const auto& s = unit;
+  std::size_t k = i;
+  const bool marked = s.substr(k, 1) == "^" || s.substr(k, 2) == "**";
+  if (marked) k += s[k] == '^' ? 1 : 2;
+  if (auto sup = superscript(s, k); !marked && sup) {
+    std::string digits;
+    bool negative = false;
+    for (; sup; sup = superscript(s, k)) {
+      if (sup->first == 10) {
+        negative = true;
+      } else {
+        digits += static_cast<char>('0' + sup->first);
+      }
+      k += sup->second;
+    }
+    check_exponent(unit, digits, negative);
+    return k;
+  }
+  const std::size_t sign = k;
+  if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
+  const std::size_t first = k;
+  while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k])) != 0) ++k;
+  if (k == first) {
+    if (marked) throw UnitError(fmt::format("cannot read the unit '{}'", unit));
+    return i;  // no power: a '-' here is a product ("kg-m")
+  }
+  check_exponent(unit, s.substr(first, k - first), sign < first && s[sign] == '-');
+  return k;
+}
+
+[[maybe_unused]] void check_plain_product(std::string_view unit) {
+  const auto refuse = [&](std::string_view what) {
+    throw UnitError(fmt::format(
+        "the unit '{}' {}; write a product of units and their powers (e.g. \"kg/m^3\", \"Pa^-1 "
+        "s^-2\")",
+        unit, what));
+  };
+  std::size_t i = 0;
+  while (i < unit.size()) {
+    const auto ch = static_cast<unsigned char>(unit[i]);
+    if (is_unit_char(ch) && !superscript(unit, i)) {
+      const std::size_t first = i;
+      while (i < unit.size() && is_unit_char(static_cast<unsigned char>(unit[i])) &&
+             !superscript(unit, i)) {
+        ++i;
+      }
+      const auto name = text::lower(unit.substr(first, i - first));
+      if (name == "after" || name == "from" || name == "since" || name == "ref") {
+        refuse(fmt::format("shifts its origin with '{}'", unit.substr(first, i - first)));
+      }
+      const auto next = unit.find_first_not_of(' ', i);
+      const bool call = next != std::string_view::npos && unit[next] == '(';
+      if (call && (name == "log" || name == "lg" || name == "ln" || name == "lb")) {
+        refuse("is a logarithm");
+      }
+      i = skip_power(unit, i);
+    } else if (ch == ')') {
+      i = skip_power(unit, i + 1);
+    } else if (ch == '@') {
+      refuse("shifts its origin with '@'");
+    } else if (std::isdigit(ch) != 0) {
+      // A factor: only the 1 of "1/s" is taken.
+      const auto after = unit.find_first_not_of(' ', i + 1);
+      if (ch != '1' || after == std::string_view::npos || unit[after] != '/') {
+        refuse("holds a number; the number goes before the unit");
+      }
+      ++i;
+    } else if (std::string_view(" */.()-").find(static_cast<char>(ch)) != std::string_view::npos) {
+      ++i;
+    } else {
+      refuse(fmt::format("holds '{}'", static_cast<char>(ch)));
+    }
+  }
+}
+
 struct UnitDeleter {
   void operator()(ut_unit* u) const { ut_free(u); }
 };
@@ -121,17 +238,39 @@ struct UnitParser::Impl {
     return u;
   }
 
+  // The factor that takes a value in `given` to `target` when the two are the same dimension: a
+  // plain scale. UDUNITS also converts a unit to its reciprocal (m^-1 to m as 1/x), which is not
+  // the same quantity; nullopt then, and for units of other dimensions.
+  static std::optional<double> scale(const ut_unit* given, const ut_unit* target) {
+    if (ut_are_convertible(given, target) == 0) return std::nullopt;
+    ConverterPtr conv(ut_get_converter(const_cast<ut_unit*>(given), const_cast<ut_unit*>(target)));
+    if (!conv) return std::nullopt;
+    const double zero = cv_convert_double(conv.get(), 0.0);
+    const double one = cv_convert_double(conv.get(), 1.0);
+    const double two = cv_convert_double(conv.get(), 2.0);
+    const bool linear = zero == 0.0 && std::isfinite(one) && one != 0.0 &&
+                        std::abs(two - 2.0 * one) <= 1e-12 * std::abs(one);
+    if (!linear) return std::nullopt;
+    return one;
+  }
+
+  // "a length", "the reciprocal of a length", "an energy", for messages.
   std::string describe(const ut_unit* u) const {
+    const auto kind = [&](std::string_view si) {
+      const auto ref = parse_unit(si);
+      if (scale(u, ref.get())) return 1;
+      return ut_are_convertible(u, ref.get()) != 0 ? -1 : 0;
+    };
     for (const auto& r : kDimensions) {
       if (r.dimension == Dimension::Dimensionless) continue;
-      const auto ref = parse_unit(r.si);
-      if (ut_are_convertible(u, ref.get()) != 0) {
-        return with_article(r.name);
+      if (const int k = kind(r.si); k != 0) {
+        return k > 0 ? with_article(r.name) : "the reciprocal of " + with_article(r.name);
       }
     }
     for (const auto& [name, si] : kOtherDimensions) {
-      const auto ref = parse_unit(si);
-      if (ut_are_convertible(u, ref.get()) != 0) return with_article(name);
+      if (const int k = kind(si); k != 0) {
+        return k > 0 ? with_article(name) : "the reciprocal of " + with_article(name);
+      }
     }
     char buf[256];
     if (ut_format(u, buf, sizeof buf, UT_ASCII | UT_DEFINITION) > 0) {
@@ -150,16 +289,20 @@ struct UnitParser::Impl {
       return value;
     }
     if (unit_str.empty()) return value;  // SI already
+    check_plain_product(unit_str);
     const auto given = parse_unit(unit_str);
     const auto target = parse_unit(r.si);
-    const bool convertible = ut_are_convertible(given.get(), target.get()) != 0;
-    if (!convertible) {
-      throw UnitError(fmt::format("'{}' is {}, but {} is needed (e.g. \"{}\")", unit_str,
-                                  describe(given.get()), with_article(r.name), r.example));
+    const auto factor = scale(given.get(), target.get());
+    // The database counts angles as dimensionless (rad^2 and 1/rad convert to rad): an angle's
+    // unit is one name alone ("deg", "rad").
+    const bool one_name = expected != Dimension::Angle ||
+                          unit_str.find_first_of(" */.()-^0123456789") == std::string_view::npos;
+    if (!factor || !one_name) {
+      const auto what = factor ? std::string("not an angle's unit") : describe(given.get());
+      throw UnitError(fmt::format("'{}' is {}, but {} is needed (in {} or a multiple, e.g. \"{}\")",
+                                  unit_str, what, with_article(r.name), r.shown, r.example));
     }
-    ConverterPtr conv(ut_get_converter(given.get(), target.get()));
-    if (!conv) throw UnitError(fmt::format("cannot convert '{}' to {}", unit_str, r.shown));
-    return cv_convert_double(conv.get(), value);
+    return value * *factor;
   }
 };
 

@@ -1,8 +1,10 @@
 // Physical quantities written with units ("30 mm", "1.2 MPa", "80 deg") turned into SI numbers.
 //
-// The unit grammar and database are those of UDUNITS-2 (Debian's libudunits2), so any unit it
-// knows works, with SI prefixes and products/powers ("kg/m^3", "Pa^-1 s^-2", "mL"). A bare
-// number is taken to be in SI already. The parser owns its unit system; there is no global state.
+// The unit database is that of UDUNITS-2 (Debian's libudunits2), so any unit it knows works, with
+// SI prefixes, as products and powers from -4 to 4 ("kg/m^3", "Pa^-1 s^-2", "mL"); a quantity is
+// taken only in its own dimension (never through its reciprocal), and UDUNITS' offsets ('@',
+// "since"), logarithms and factors inside the unit are refused. A bare number is taken to be in
+// SI already. The parser owns its unit system; there is no global state.
 #pragma once
 
 #include <memory>

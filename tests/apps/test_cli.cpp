@@ -439,6 +439,35 @@ TEST(Cli, AnalyzeRejectsAWrongUnitOnAFlag) {
 namespace snapjump::app {
 namespace {
 
+TEST(Cli, AReciprocalOrShiftedUnitIsRefusedNamingTheKey) {
+  // UDUNITS converts a unit to its reciprocal (0.5 m^-1 to 2 m) and reads '@' as an offset.
+  const std::vector<std::vector<std::string>> flags{
+      {"--R", "0.5 m^-1", "shell.R", "length"},
+      {"--R", "30 mm^-1", "shell.R", "length"},
+      {"--E", "1 Pa^-1", "material.E", "pressure"},
+      {"--end-time", "1 Hz", "numerics.end_time", "time"},
+      {"--R", "30 mm @ 5", "shell.R", "'@'"},
+      {"--R", "30 mm^99999999999999999999", "shell.R", "from -4 to 4"}};
+  for (const auto& f : flags) {
+    const auto r = run({"predict", f[0], f[1]});
+    EXPECT_EQ(r.code, kExitBadInput) << f[1] << ": " << r.out;
+    EXPECT_NE(r.err.find(f[0] + ": " + f[2]), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(f[3]), std::string::npos) << r.err;
+  }
+  // A record's header: t in Hz would invert the times, F in 1/N the forces.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   fmt::format("snapjump_cli_reciprocal_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  for (const auto& header : {"t [Hz],F [N]", "t [s],F [N^-1]"}) {
+    const auto path = dir / "record.csv";
+    std::ofstream(path) << header << "\n1,0.5\n2,0.4\n4,0.0\n";
+    const auto r = run({"analyze", path.string(), "--R", "30mm"});
+    EXPECT_EQ(r.code, kExitBadInput) << header << ": " << r.out;
+    EXPECT_NE(r.err.find("is the reciprocal of a"), std::string::npos) << r.err;
+  }
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Cli, RunNeverOverwritesAnOutputFolder) {
   const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_existing_run";
   std::filesystem::create_directories(dir);

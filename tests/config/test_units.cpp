@@ -90,6 +90,55 @@ TEST_F(UnitsTest, GarbageIsRejected) {
   expect_error(parser, "1e999 m", Dimension::Length, "out of range");
 }
 
+TEST_F(UnitsTest, AReciprocalIsNotTheQuantity) {
+  // UDUNITS converts m^-1 to m as 1/x: 0.5 m^-1 would read as 2 m.
+  expect_error(parser, "0.5 m^-1", Dimension::Length,
+               "'m^-1' is the reciprocal of a length, but a length is needed (in m");
+  expect_error(parser, "30 mm^-1", Dimension::Length, "reciprocal of a length");
+  expect_error(parser, "1 Pa^-1", Dimension::Pressure, "reciprocal of a pressure");
+  expect_error(parser, "1 Hz", Dimension::Time, "'Hz' is the reciprocal of a time");
+  expect_error(parser, "2 N^-1", Dimension::Force, "reciprocal of a force");
+  expect_error(parser, "1 Pa s^2", Dimension::ValveAcceleration, "reciprocal of");
+  expect_error(parser, "3 rad^-1", Dimension::Angle, "not an angle's unit");
+  expect_error(parser, "3 deg^2", Dimension::Angle, "not an angle's unit");
+  // The same quantity in other words is still taken.
+  EXPECT_NEAR(parser.parse("1 m^3/m^2", Dimension::Length), 1.0, 1e-15);
+  EXPECT_NEAR(parser.parse("2 1/(Pa s)", Dimension::ValveRate), 2.0, 1e-15);
+  EXPECT_NEAR(parser.parse("1 g cm^-3", Dimension::Density), 1000.0, 1e-9);
+  EXPECT_NEAR(parser.parse("1 N.m^-1", Dimension::Stiffness), 1.0, 1e-15);
+}
+
+TEST_F(UnitsTest, OnlyProductsAndSmallPowersOfUnits) {
+  // UDUNITS reads '@' (and after, from, since, ref) as an offset: 30 mm @ 5 would be 35 mm.
+  expect_error(parser, "30 mm @ 5", Dimension::Length, "shifts its origin with '@'");
+  expect_error(parser, "30 mm from 5", Dimension::Length, "shifts its origin with 'from'");
+  expect_error(parser, "30 mm After 5", Dimension::Length, "shifts its origin with 'After'");
+  expect_error(parser, "10 s since 2000-01-01", Dimension::Time, "shifts its origin");
+  expect_error(parser, "30 mm ref 5", Dimension::Length, "shifts its origin");
+  expect_error(parser, "3 lg(re 1 Pa)", Dimension::Pressure, "is a logarithm");
+  // A power too large for an int wraps around in the library (m^99999999999999999999 is m^-1).
+  expect_error(parser, "30 mm^99999999999999999999", Dimension::Length,
+               "has the power 99999999999999999999; a unit's powers are whole numbers from -4 "
+               "to 4");
+  expect_error(parser, "1 m^5/m^4", Dimension::Length, "has the power 5");
+  expect_error(parser, "1 m-7 m^8", Dimension::Length, "has the power -7");
+  expect_error(parser, "1 m^0", Dimension::Length, "has the power 0");
+  // Numbers inside the unit are factors (and "m -2" is -2 m).
+  expect_error(parser, "30 mm 2", Dimension::Length, "holds a number");
+  expect_error(parser, "30 m -2", Dimension::Length, "holds a number");
+  expect_error(parser, "30 m/2", Dimension::Length, "holds a number");
+  expect_error(parser, "30 m^2.5/m^1", Dimension::Length, "holds a number");
+  expect_error(parser, "30 m;", Dimension::Length, "holds ';'");
+  // Products, quotients and powers in their usual spellings are taken.
+  EXPECT_NEAR(parser.parse("1 kg/m**3", Dimension::Density), 1.0, 1e-15);
+  EXPECT_NEAR(parser.parse("1 kg/m3", Dimension::Density), 1.0, 1e-15);
+  EXPECT_NEAR(parser.parse("1 kg.m-3", Dimension::Density), 1.0, 1e-15);
+  EXPECT_NEAR(parser.parse("1 kg/m\u00b3", Dimension::Density), 1.0, 1e-15);
+  EXPECT_NEAR(parser.parse("1 kg/(m^2 m)", Dimension::Density), 1.0, 1e-15);
+  EXPECT_NEAR(parser.parse("3 kN/m", Dimension::Stiffness), 3000.0, 1e-9);
+  EXPECT_NEAR(parser.parse("5 \u00b5m", Dimension::Length), 5e-6, 1e-20);
+}
+
 TEST_F(UnitsTest, ABareNumberIsOneWithoutAUnit) {
   EXPECT_TRUE(is_bare_number("40"));
   EXPECT_TRUE(is_bare_number(" 4e-2 "));
