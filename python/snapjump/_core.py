@@ -310,50 +310,134 @@ def run(case=None, output=None, resolution=None, model=None, end_time=None, resu
     return m.group(1).strip()
 
 
+# The units of a run's series.csv (docs/popper.md, "Measurements").
+_SERIES_UNITS = {"t": "s", "z": "m", "r": "m", "w": "m", "e": "m", "e_apex": "m", "F": "N",
+                 "delta_p": "Pa", "vz": "m/s", "kinetic": "J", "elastic": "J",
+                 "gravitational": "J", "contact": ""}
+
+
+def _key_and_unit(header):
+    """A column's header as (key, unit): "F_star_lo [N]" -> ("F_star_lower", "N"); a theory
+    bound's _lo / _hi as predict's lower / upper."""
+    import re
+    m = re.fullmatch(r"(.*?) \[(.*)\]", header)
+    key, unit = (m.group(1), m.group(2)) if m else (header, _SERIES_UNITS.get(header, ""))
+    key = re.sub(r"_lo$", "_lower", re.sub(r"_hi$", "_upper", key))
+    return key, unit
+
+
+def _frame(columns):
+    try:
+        import pandas as pd
+    except ImportError:
+        return None
+    return pd.DataFrame(columns)
+
+
 def _table(path):
-    """A CSV table as {column: numpy array} (text columns stay lists), and a pandas DataFrame
-    beside it when pandas is installed."""
+    """A CSV table as ({key: numpy array} (text columns stay lists), {key: unit})."""
+    import csv
     import numpy as np
     with open(path, newline="") as f:
         rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")]
     if not rows:
-        raise InputError(f"{path}: empty")
+        raise InputError(f"{path}: the table is empty")
     header, body = rows[0], rows[1:]
-    out = {}
+    out, units = {}, {}
     for k, name in enumerate(header):
+        key, units[key] = _key_and_unit(name)
         cells = [r[k] if k < len(r) else "" for r in body]
         try:
-            out[name] = np.array([float(c) if c != "" else np.nan for c in cells])
+            out[key] = np.array([float(c) if c != "" else np.nan for c in cells])
         except ValueError:
-            out[name] = cells
-    try:
-        import pandas as pd
-        frame = pd.DataFrame(out)
-    except ImportError:
-        frame = None
-    return out, frame
+            out[key] = cells
+    return out, units
+
+
+def _run_values(summary):
+    """A run's summary as one row of a sweep's table: ({key: value}, {key: unit})."""
+    values, units = {}, {}
+    measured = summary.get("measured") or {}
+    theory = summary.get("theory") or {}
+    values["status"], units["status"] = summary.get("status", ""), ""
+    values["outcome"], units["outcome"] = measured.get("outcome", ""), ""
+    values["predicted_outcome"], units["predicted_outcome"] = theory.get("outcome_text", ""), ""
+    case_units = {k["flag"].replace("-", "_"): k["unit"] for k in _snapjump.case_keys}
+    case_units.update(counterweight="kg", moving_mass="kg")
+    for key, v in (summary.get("case") or {}).items():
+        if isinstance(v, (int, float)) and not isinstance(v, bool):
+            values[key], units[key] = float(v), case_units.get(key, "")
+    for key, q in (theory.get("quantities") or {}).items():
+        for end in ("lower", "upper"):
+            v = q.get(end)
+            values[f"{key}_{end}"] = float("nan") if v is None else float(v)
+            units[f"{key}_{end}"] = q.get("unit", "")
+    for key, q in (measured.get("quantities") or {}).items():
+        v = q.get("value")
+        values[key] = float("nan") if v is None else float(v)
+        units[key] = q.get("unit", "")
+    if "wall_time" in summary:
+        values["wall_time"], units["wall_time"] = float(summary["wall_time"]), "s"
+    return values, units
 
 
 def read_run(folder):
-    """A run's folder: {"series": {column: array}, "summary": dict, "case": text, "frame":
-    DataFrame or None}."""
+    """A simulated run's folder (written by run()), as arrays and numbers in SI.
+
+    folder: the run's folder (series.csv, summary.json, case.toml).
+
+    Returns a dict:
+      "series": {column: numpy array} of the time series (t [s], z, r, w, e, e_apex [m], F [N],
+          delta_p [Pa], vz [m/s], kinetic, elastic, gravitational [J]; contact as a list of
+          text: none / ring / disk);
+      "values": the run as one row of a sweep's table (read_sweep), {key: number or text}:
+          status, outcome (measured), predicted_outcome, the case's values (R, h, E,
+          net_weight, ...), the measured quantities (F_star, t_star, H, alpha_F, ...), the
+          theory's bounds as KEY_lower and KEY_upper (F_star_lower, ...), wall_time;
+      "units": {key: SI unit} for the series' columns and the values ("1" or "" when none);
+      "summary": summary.json as a dict; "case": case.toml's text (None without one);
+      "frame": the series as a pandas DataFrame, or None when pandas is not installed.
+
+    Raises FileNotFoundError for a folder that is not there or holds no series.csv.
+    """
+    import json
     folder = _existing(folder, "run folder")
     series_path = os.path.join(folder, "series.csv")
     if not os.path.isfile(series_path):
         raise FileNotFoundError(2, "not a snapjump run folder (no series.csv)", series_path)
-    series, frame = _table(series_path)
-    with open(os.path.join(folder, "summary.json")) as f:
+    series, units = _table(series_path)
+    summary_path = _existing(os.path.join(folder, "summary.json"), "run summary")
+    with open(summary_path) as f:
         summary = json.load(f)
+    values, value_units = _run_values(summary)
     case_path = os.path.join(folder, "case.toml")
-    case_text = open(case_path).read() if os.path.isfile(case_path) else None
-    return {"series": series, "summary": summary, "case": case_text, "frame": frame}
+    case_text = None
+    if os.path.isfile(case_path):
+        with open(case_path) as f:
+            case_text = f.read()
+    return {"series": series, "values": values, "units": {**units, **value_units},
+            "summary": summary, "case": case_text, "frame": _frame(series)}
 
 
 def read_sweep(folder):
-    """A sweep's folder: {"table": {column: array}, "frame": DataFrame or None}."""
+    """A sweep's table (snapjump sweep's sweep.csv), one row a run, as arrays in SI.
+
+    folder: the sweep's folder, or its sweep.csv.
+
+    Returns a dict:
+      "table": {key: numpy array} (text columns as lists), with the keys of read_run's
+          "values": run, status, outcome, predicted_outcome, the swept keys as given
+          (friction.mu), the case's values (R, h, ...), the measured quantities (F_star, ...),
+          the theory's bounds as KEY_lower / KEY_upper, wall_time, undetermined, error; the
+          unit that sweep.csv writes in a header ("F_star [N]") is not part of the key;
+      "units": {key: SI unit};
+      "frame": the table as a pandas DataFrame, or None when pandas is not installed.
+
+    Raises FileNotFoundError for a folder that is not there or holds no sweep.csv.
+    """
     folder = _existing(folder, "sweep folder")
     path = folder if folder.endswith(".csv") else os.path.join(folder, "sweep.csv")
     if not os.path.isfile(path):
         raise FileNotFoundError(2, "no sweep table (a sweep's folder holds sweep.csv)", path)
-    table, frame = _table(path)
-    return {"table": table, "frame": frame}
+    table, units = _table(path)
+    return {"table": table, "units": units, "frame": _frame(table)}

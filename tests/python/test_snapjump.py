@@ -120,7 +120,8 @@ def test_read_sweep(tmp_path):
                     "run-0001,failed,,\n")
     s = snapjump.read_sweep(tmp_path)
     assert s["table"]["outcome"] == ["Jump", ""]
-    assert s["table"]["alpha_F [1]"][0] == 5.5 and math.isnan(s["table"]["alpha_F [1]"][1])
+    assert s["table"]["alpha_F"][0] == 5.5 and math.isnan(s["table"]["alpha_F"][1])
+    assert s["units"]["alpha_F"] == "1"
 
 
 def test_ctrl_c_stops_a_run_that_can_be_resumed(tmp_path):
@@ -223,3 +224,43 @@ def test_missing_files_and_bad_values_in_pythons_words(tmp_path):
         with pytest.raises(ValueError, match=words) as e:
             call()
         assert isinstance(e.value, snapjump.InputError) and "--" not in str(e.value)
+
+
+def _write_run_and_sweep(tmp_path):
+    # One run's folder and a sweep's table that holds the same run, as snapjump writes them:
+    # series.csv without units, summary.json nested, sweep.csv with units in its headers.
+    run = tmp_path / "run"
+    run.mkdir()
+    (run / "series.csv").write_text("t,z,F,contact\n0,0,0.48,ring\n0.0001,1e-6,0.5,disk\n")
+    summary = {"status": "completed (apex of the flight)", "wall_time": 12.5,
+               "case": {"R": 0.03, "h": 0.002, "net_weight": 0.48, "mesh": None},
+               "measured": {"outcome": "Jump",
+                            "quantities": {"F_star": {"value": 1.75, "unit": "N"},
+                                           "t_star": {"value": 0.031, "unit": "s"}}},
+               "theory": {"outcome_text": "Jump",
+                          "quantities": {"F_star": {"lower": 1.6, "upper": 2.6, "unit": "N"}}}}
+    import json
+    (run / "summary.json").write_text(json.dumps(summary))
+    sweep = tmp_path / "sweep"
+    sweep.mkdir()
+    (sweep / "sweep.csv").write_text(
+        "run,status,outcome,predicted_outcome,R [m],h [m],net_weight [N],F_star [N],t_star [s],"
+        "F_star_lo [N],F_star_hi [N],wall_time [s]\n"
+        "run-0000,completed,Jump,Jump,0.03,0.002,0.48,1.75,0.031,1.6,2.6,"
+        "12.5\n")
+    return run, sweep
+
+
+def test_read_run_and_read_sweep_share_keys_and_units(tmp_path):
+    run, sweep = _write_run_and_sweep(tmp_path)
+    r, s = snapjump.read_run(run), snapjump.read_sweep(sweep)
+    assert r["series"]["F"][1] == 0.5 and r["series"]["contact"] == ["ring", "disk"]
+    assert r["units"]["t"] == "s" and r["units"]["F"] == "N"
+    shared = ["outcome", "predicted_outcome", "R", "h", "net_weight", "F_star",
+              "t_star", "F_star_lower", "F_star_upper", "wall_time"]
+    for key in shared:
+        row = s["table"][key][0]
+        assert r["values"][key] == row, key
+        assert r["units"][key] == s["units"][key], key
+    assert s["units"]["F_star_lower"] == "N" and s["units"]["R"] == "m"
+    assert "F_star [N]" not in s["table"] and "F_star_lo" not in s["table"]
