@@ -12,10 +12,10 @@ command line.
 Errors raise snapjump.SnapjumpError (bad input: snapjump.InputError) with the command line's
 message. Ctrl-C stops a run as --pause-at does: it can be resumed with run(resume=folder).
 """
-from ._core import (InputError, SnapjumpError, __version__, analyze, contact, predict,
+from ._core import (InputError, SnapjumpError, __version__, analyze, compare, contact, predict,
                     read_run, read_sweep, run)
 
-__all__ = ["predict", "contact", "analyze", "run", "read_run", "read_sweep",
+__all__ = ["predict", "contact", "analyze", "compare", "run", "read_run", "read_sweep",
            "SnapjumpError", "InputError"]
 
 for _name in __all__:

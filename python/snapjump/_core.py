@@ -441,3 +441,60 @@ def read_sweep(folder):
         raise FileNotFoundError(2, "no sweep table (a sweep's folder holds sweep.csv)", path)
     table, units = _table(path)
     return {"table": table, "units": units, "frame": _frame(table)}
+
+
+def compare(records, run_dir, columns=None, units=None, force_offset=None, settle_time=None,
+            complete=False, force_resolution=None, ring_width=None, length_resolution=None,
+            figure=None):
+    """Measured records beside a simulated run and the theory's bounds, as `snapjump compare
+    RECORD... RUN_DIR --format json` (docs/analysis.md, "A record beside a run").
+
+    records: a record's CSV file (any format analyze() reads) or a list of them; several give
+        their mean and spread.
+    run_dir: the run's folder (written by run(): series.csv, case.toml).
+    columns, units: which header names a record's column ({"t": "Time (s)"}) and the unit of a
+        column whose header has none ({"F": "mN"}), as in analyze().
+    force_offset: added to the records' F, e.g. "0.48 N" for a plate tared with the popper on it.
+    settle_time: how long a record must go on after its force peak to call it Snap ("50 ms").
+    complete: the records cover the whole experiment.
+    force_resolution: the plate's resolution, the records' uncertainty of F (default 12 mN).
+    ring_width: the contact ring's width the camera sees, the uncertainty of r* (r* is not
+        judged without it).
+    length_resolution: the lasers' resolution, the uncertainty of z, w and e.
+    figure: where to draw the overlay figure (.png or .svg); None draws none.
+    Values with a unit are text ("12 mN"); bare numbers are SI.
+
+    Returns the command's JSON as a dict (SI): "quantities" ({key: {"record", "run", "lower",
+    "upper", "difference", "uncertainty", "within", "in_bounds", "n", "values", "spread",
+    "unit", ...}}), "outcomes" ({"records": [...], "run": ..., "theory": ...}), "records",
+    "notes", "units"; and "frame": the quantities as a pandas DataFrame (one row a quantity),
+    or None when pandas is not installed (the dict holds the same numbers).
+
+    Raises FileNotFoundError for a missing record or run folder, InputError for a bad value.
+    """
+    import json
+    if isinstance(records, (str, os.PathLike)):
+        records = [records]
+    args = ["compare", *(_existing(r, "record file") for r in records),
+            _existing(run_dir, "run folder")]
+    for name, v in (("--force-offset", force_offset), ("--settle-time", settle_time),
+                    ("--force-resolution", force_resolution), ("--ring-width", ring_width),
+                    ("--length-resolution", length_resolution)):
+        if v is not None:
+            args += [name, _value(v)]
+    if complete:
+        args.append("--complete")
+    for k, v in (columns or {}).items():
+        args += ["--column", f"{k}={v}"]
+    for k, v in (units or {}).items():
+        args += ["--unit", f"{k}={v}"]
+    args += ["--figure", os.fspath(figure)] if figure is not None else ["--no-figure"]
+    result = json.loads(_call(args + ["--format", "json"]))
+    quantities = result.get("quantities", {})
+    try:
+        import pandas as pd
+    except ImportError:
+        result["frame"] = None
+    else:
+        result["frame"] = pd.DataFrame.from_dict(quantities, orient="index")
+    return result

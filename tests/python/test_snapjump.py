@@ -264,3 +264,63 @@ def test_read_run_and_read_sweep_share_keys_and_units(tmp_path):
         assert r["units"][key] == s["units"][key], key
     assert s["units"]["F_star_lower"] == "N" and s["units"]["R"] == "m"
     assert "F_star [N]" not in s["table"] and "F_star_lo" not in s["table"]
+
+
+def _write_series(path, cols):
+    with open(path, "w") as f:
+        f.write(",".join(cols) + "\n")
+        for row in zip(*cols.values()):
+            f.write(",".join(repr(float(v)) for v in row) + "\n")
+
+
+def _record_and_run(tmp_path):
+    # The reference jump as a record and as a run's series, with the default popper's case.
+    cols = _jump_columns()
+    _write_series(tmp_path / "record.csv", cols)
+    run = tmp_path / "run"
+    run.mkdir()
+    _write_series(run / "series.csv", cols)
+    (run / "case.toml").write_text('[shell]\nR = "30 mm"\nh = "2 mm"\n[material]\n'
+                                   'E = "1.2 MPa"\n[popper]\nnet_weight = "0.48 N"\n')
+    return tmp_path / "record.csv", run
+
+
+@pytest.mark.parametrize("with_pandas", [False, True])
+def test_compare_a_record_beside_a_run(tmp_path, monkeypatch, with_pandas):
+    import sys
+    import types
+    if with_pandas:  # a stand-in for pandas, whichever is installed: what compare hands it
+        fake = types.ModuleType("pandas")
+
+        class DataFrame:
+            @classmethod
+            def from_dict(cls, d, orient):
+                frame = cls()
+                frame.rows, frame.orient = d, orient
+                return frame
+        fake.DataFrame = DataFrame
+        monkeypatch.setitem(sys.modules, "pandas", fake)
+    else:
+        monkeypatch.setitem(sys.modules, "pandas", None)  # import pandas raises ImportError
+    record, run = _record_and_run(tmp_path)
+    c = snapjump.compare(record, run)
+    assert c["outcomes"]["records"] == ["Jump"] and c["outcomes"]["run"] == "Jump"
+    q = c["quantities"]
+    assert q["F_star"]["record"] == pytest.approx(2.0, rel=1e-9)
+    assert q["F_star_over_mg"]["record"] == pytest.approx(2.0 / 0.48, rel=1e-9)
+    assert q["t_star"]["record"] == pytest.approx(25.92e-3 - 20.05e-3, abs=1e-8)
+    assert q["t_star"]["difference"] == pytest.approx(0.0, abs=1e-12)  # the same series
+    assert q["F_star"]["unit"] == "N"
+    if with_pandas:
+        assert c["frame"].orient == "index" and c["frame"].rows is q
+    else:
+        assert c["frame"] is None
+    assert not (tmp_path / "run" / "figures").exists()  # figure=None draws none
+    c2 = snapjump.compare([record, record], run, force_resolution="5 mN")
+    assert q["F_star"]["uncertainty"] == pytest.approx(0.012)
+    assert c2["quantities"]["F_star"]["n"] == 2
+    assert c2["quantities"]["F_star"]["uncertainty"] == pytest.approx(0.005)
+    with pytest.raises(FileNotFoundError, match="nowhere"):
+        snapjump.compare(tmp_path / "nowhere.csv", run)
+    with pytest.raises(snapjump.InputError, match="force_offset"):
+        snapjump.compare(record, run, force_offset="1 m")
