@@ -11,11 +11,13 @@ __version__ = _snapjump.__version__
 
 
 class SnapjumpError(RuntimeError):
-    """snapjump failed; the message is the command line's."""
+    """snapjump failed (a run that could not go on, a folder it could not write); the message
+    says what and where. The base of every error the package raises itself."""
 
 
 class InputError(SnapjumpError, ValueError):
-    """Bad input (a case value, a unit, a file); the message names it, as the command line's."""
+    """Bad input (a case value, a unit, a file's content): a ValueError whose message names the
+    value and where it was given, in the functions' words (net_weight, not --net-weight)."""
 
 
 def _flag(key):
@@ -217,7 +219,15 @@ def predict(case=None, allow_implausible=False, **values):
 
 
 def contact(nu=0.5):
-    """The shell-plane contact solver's constants and the prefactor bounds at Poisson's ratio nu."""
+    """The shell-plane contact solver's constants and the theory's prefactor bounds, as
+    `snapjump contact --format json` (docs/contact-solver.md).
+
+    nu: Poisson's ratio (dimensionless), in (-1, 0.5].
+
+    Returns a dict: "N_plus", "N_minus", "n2" (the disk and ring branches' constants, rescaled
+    units), "bounds" ({"alpha_r", "alpha_e", "alpha_F", "alpha_t": {"lower", "upper"}}, the
+    prefactors' bounds at nu), and the checks of the solver.
+    Raises InputError for nu outside its range."""
     return json.loads(_call(["contact", "--nu", repr(float(nu)), "--format", "json"]))
 
 
@@ -238,10 +248,22 @@ def _write_columns(columns, path):
 
 def analyze(data, case=None, R=None, complete=False, force_offset=None, columns=None, units=None):
     """The characteristic quantities and the outcome of a time series (docs/analysis.md), as
-    `snapjump analyze --format json`. `data` is a CSV file (any format the command line reads), a
-    dict of columns (SI) or a pandas DataFrame with columns t and F and any of z, r, w, e,
-    delta_p, contact. R with its unit ("30 mm"); columns={"t": "Time (s)"} and units={"F": "mN"}
-    as --column and --unit."""
+    `snapjump analyze --format json`.
+
+    data: a CSV file (any format the command line reads: separators, decimal commas, units in
+        the headers), a dict of columns in SI, or a pandas DataFrame: t [s] and F [N] (the plate
+        force) and any of z, r, w, e [m], delta_p [Pa], contact.
+    case: a case file whose popper the record is of (R, net weight, masses for the theory).
+    R: the shell's radius, text with a unit ("30 mm") or metres; needed for the onset w / R.
+    complete: the record covers the whole experiment (its end is the landing).
+    force_offset: added to F, e.g. "0.48 N" for a plate tared with the popper on it.
+    columns: which header names a column, {"t": "Time (s)"}; units: the unit of a column whose
+        header has none, {"F": "mN"}.
+
+    Returns a dict (SI): "outcome" ("Jump", "Snap", "No snap", "Thrown" or "undetermined"),
+    "quantities" ({key: {"value", "unit", "label", "source", "definition"}}: t_onset, F_star,
+    t_star, H, ...), "warnings", "undetermined" (why, when it is).
+    Raises FileNotFoundError for a missing file, InputError for a bad value or record."""
     args = ["analyze"]
     tmp = None
     if isinstance(data, (str, os.PathLike)):
@@ -275,11 +297,24 @@ def analyze(data, case=None, R=None, complete=False, force_offset=None, columns=
 
 def run(case=None, output=None, resolution=None, model=None, end_time=None, resume=None,
         progress=None, **values):
-    """Simulates the popper in this process (`snapjump run`) and returns its folder. progress is
-    called with each line the run prints (progress and results); Ctrl-C stops the run with a checkpoint past the release
-    (KeyboardInterrupt; continue with run(resume=folder)). end_time caps the simulated time (the
-    run ends at the apex of the flight, at the latest there); with resume, a later cap continues a
-    run that went to its own."""
+    """Simulates the popper in this process, as `snapjump run`, and returns its folder.
+
+    case: a case file, a dict of its tables, or None (the paper's default popper), as predict().
+    output: the folder to write (default: one named after the case, as the command line's).
+    resolution: "coarse", "default" or "fine" (the mesh and grid presets).
+    model: "3d" (the paper's MPM) or "axisymmetric" (finite elements, seconds to minutes).
+    end_time: a cap on the simulated time after the release, text ("50 ms") or seconds; the run
+        ends at the apex of the flight, at the latest there. With resume, a later cap continues
+        a run that went to its own.
+    resume: a run's folder to continue from its checkpoint (case and output then come from it).
+    progress: called with each line the run prints (progress and results), e.g. print.
+    **values: case values on top of the case, as predict()'s (R="30 mm", net_weight=0.48).
+
+    Returns the run's folder (text): series.csv, summary.json, case.toml, figures; read it with
+    read_run(). Ctrl-C stops the run with a checkpoint past the release (KeyboardInterrupt;
+    continue with run(resume=folder)).
+    Raises FileNotFoundError for a missing case file or folder, InputError for a bad value,
+    SnapjumpError when the run fails."""
     for name in values:
         _case_key(name)
     if resume is not None:

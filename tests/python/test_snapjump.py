@@ -324,3 +324,16 @@ def test_compare_a_record_beside_a_run(tmp_path, monkeypatch, with_pandas):
         snapjump.compare(tmp_path / "nowhere.csv", run)
     with pytest.raises(snapjump.InputError, match="force_offset"):
         snapjump.compare(record, run, force_offset="1 m")
+
+
+def test_every_public_function_explains_itself():
+    import pydoc
+    for name in snapjump.__all__:
+        doc = getattr(snapjump, name).__doc__
+        assert doc and len(doc.split()) > 10, name
+    for name in ("predict", "contact", "analyze", "compare", "run", "read_run", "read_sweep"):
+        assert "Returns" in getattr(snapjump, name).__doc__, name
+    text = pydoc.render_doc(snapjump.run, renderer=pydoc.plaintext)
+    for words in ("end_time", "seconds", "resolution", "progress", "Returns the run's folder",
+                  "FileNotFoundError"):
+        assert words in text, words
