@@ -183,7 +183,7 @@ def predict(case=None, allow_implausible=False, **values):
         delta_p_j_over_pc, ...) or dotted key ("shell.R"): text with a unit ("30 mm") or a
         number in SI (0.03 for 30 mm; phi in radians).
 
-    Scalar values return the command line's `snapjump predict --format json` as a dict (SI):
+    Returns, for scalar values, the command line's `snapjump predict --format json` as a dict (SI):
     "case" (the case's values), "quantities" ({name: {"lower", "upper", "unit"}}: p_c, F_c,
     F_star, H, ...), "outcome" (the outcomes the theory allows, a list), "outcome_text",
     "beyond_range", "reverse_snap".
