@@ -273,7 +273,11 @@ std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress
   const double p_buckle = st.buckle_factor * pc;
   m.start_held(st.held_damping * numerics_.prep_damping);
   if (st.quasi_static) {
-    if (const auto qs = m.buckle_quasi_statically(delta_p_j_, p_buckle, pc)) {
+    // The run's progress (and its stop hook, which throws) at every point of the branch.
+    const auto at_point = [&] {
+      if (progress) progress("buckle (branch)", 0.0, 0.0);
+    };
+    if (const auto qs = m.buckle_quasi_statically(delta_p_j_, p_buckle, pc, at_point)) {
       gas_.hold(qs->dp);
       if (!buckled_quasi_statically(prep, *qs, pc)) return std::nullopt;
       return qs->dp;

@@ -63,11 +63,13 @@ class ShellModel {
     double p_c = 0.0, p_minus = 0.0, p_hold = 0.0;
     std::string note;  // why it stopped, when it did not reach dp
   };
-  virtual std::optional<QuasiStaticBuckle> buckle_quasi_statically(double dp, double max_dp,
-                                                                   double p_ref) {
+  // `at_point` is called at each converged point of the branch (a stop hook may throw from it).
+  virtual std::optional<QuasiStaticBuckle> buckle_quasi_statically(
+      double dp, double max_dp, double p_ref, const std::function<void()>& at_point) {
     (void)dp;
     (void)max_dp;
     (void)p_ref;
+    (void)at_point;
     return std::nullopt;
   }
   // Phase 3 on: the shell lowered onto the plate (its lowest point where the plate meets it),

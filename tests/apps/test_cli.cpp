@@ -957,6 +957,49 @@ TEST(RunEnd, AResumedRunKeepsItsCasesOriginAndItsWholeWallTime) {
   EXPECT_GT(after["wall_time"].get<double>(), before["wall_time"].get<double>());
 }
 
+// Starts the command line `words` (the binary first) in a child process with SIGINT at its
+// default, its output into `log`; -1 when fork fails.
+pid_t spawn(std::vector<std::string> words, const std::filesystem::path& log) {
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid == 0) {  // only async-signal-safe calls up to the exec
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::signal(SIGINT, SIG_DFL);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// Ctrl-C while the axisymmetric preparation follows its pressure-volume branch (a minute and
+// more at the fine preset) stops the run at the branch's next point, not at the branch's end.
+TEST(RunEnd, SigintStopsTheBranchAtItsNextPoint) {
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "snapjump";
+  ASSERT_TRUE(std::filesystem::exists(exe)) << exe << ": build the snapjump target";
+  const auto base = own_folder("snapjump_cli_branch_sigint");
+  const auto dir = base / "run", log = base / "log.txt";
+  const pid_t pid = spawn({exe.string(), "run", "--model", "axisymmetric", "--resolution", "fine",
+                           "--quiet", "--output", dir.string()},
+                          log);
+  ASSERT_GE(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  ::kill(pid, SIGINT);
+  const auto sent = std::chrono::steady_clock::now();
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  const double waited =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+  ASSERT_TRUE(WIFEXITED(status)) << text_of(log);
+  EXPECT_EQ(WEXITSTATUS(status), kExitInterrupted) << text_of(log);
+  EXPECT_NE(text_of(log).find("in the preparation (buckle (branch)"), std::string::npos)
+      << text_of(log);
+  EXPECT_LT(waited, 20.0);  // the fine branch alone takes 40-70 s on two cores here
+}
+
 // Ctrl-C: SIGINT to a `snapjump run` past its release leaves a checkpoint and the status
 // "interrupted" with the command that resumes it, and the process ends with 130. The run, given
 // no end time, states the cap it has from the case; resumed with a cap of its own, its series is
@@ -971,19 +1014,8 @@ TEST(RunEnd, SigintLeavesAnInterruptedRunThatResumes) {
   std::vector<std::string> words = {exe.string(),   "run",          "--model",
                                     "axisymmetric", "--resolution", "coarse",
                                     "--quiet",      "--output",     dir.string()};
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
+  const pid_t pid = spawn(words, log);
   ASSERT_GE(pid, 0);
-  if (pid == 0) {  // only async-signal-safe calls up to the exec
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    ::dup2(fd, 1);
-    ::dup2(fd, 2);
-    ::signal(SIGINT, SIG_DFL);
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
   // The release has come when the series exists.
   const auto until = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   while (!std::filesystem::exists(dir / "series.csv") && std::chrono::steady_clock::now() < until)
