@@ -337,3 +337,44 @@ def test_every_public_function_explains_itself():
     for words in ("end_time", "seconds", "resolution", "progress", "Returns the run's folder",
                   "FileNotFoundError"):
         assert words in text, words
+
+
+def _design_grid(tmp_path, out, hide_matplotlib):
+    import subprocess
+    import sys
+    script = os.path.join(SOURCE, "examples", "python", "design_grid.py")
+    code = ("import runpy, sys\n"
+            + ("sys.modules['matplotlib'] = None\n" if hide_matplotlib else "")
+            + f"sys.argv = [{script!r}, '--n', '6', '--out', {str(out)!r}]\n"
+            + f"runpy.run_path({script!r}, run_name='__main__')\n")
+    env = dict(os.environ, PYTHONPATH=os.path.dirname(os.path.dirname(snapjump.__file__)))
+    return subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True,
+                          text=True, check=True, env=env).stdout
+
+
+def test_the_design_grid_example(tmp_path):
+    out = tmp_path / "grid.csv"
+    said = _design_grid(tmp_path, out, hide_matplotlib=True)
+    assert "no matplotlib" in said and str(out) in said
+    import csv
+    with open(out) as f:
+        rows = list(csv.DictReader(f))
+    assert len(rows) == 36
+    h = np.array([float(r["h [m]"]) for r in rows])
+    mg = np.array([float(r["net_weight [N]"]) for r in rows])
+    assert sorted(set(h)) == pytest.approx(np.linspace(1e-3, 3e-3, 6))
+    assert sorted(set(mg)) == pytest.approx(np.linspace(0.1, 2.0, 6))
+    # F* = alpha_F E h^3 / R: the same alpha_F bound for every design (one nu).
+    alpha = np.array([float(r["F_star_lower [N]"]) for r in rows]) / (1.2e6 * h ** 3 / 0.03)
+    np.testing.assert_allclose(alpha, snapjump.contact(nu=0.45)["bounds"]["alpha_F"]["lower"],
+                               rtol=1e-9)
+    # A design whose F* upper bound stays below its net weight cannot jump.
+    for r in rows:
+        if float(r["F_star_upper [N]"]) < float(r["net_weight [N]"]):
+            assert "Jump" not in r["outcome"]
+    try:
+        import matplotlib  # noqa: F401
+    except ImportError:
+        return
+    said = _design_grid(tmp_path, tmp_path / "grid.png", hide_matplotlib=False)
+    assert (tmp_path / "grid.png").stat().st_size > 0
