@@ -102,6 +102,8 @@ def test_a_short_run_in_process_with_progress_and_arrays(tmp_path):
     assert np.all(np.diff(t) > 0)
     assert r["summary"]["status"].startswith("capped at 0.005 s")
     assert any(line.strip().startswith("prepared") for line in lines)
+    assert r["units"]["t"] == "s" and r["values"]["R"] == pytest.approx(0.03)
+    assert r["units"]["F_star_lower"] == "N" and r["values"]["F_star_lower"] > 0
     with pytest.raises(FileNotFoundError, match="not a snapjump run folder"):
         snapjump.read_run(tmp_path)
 
@@ -378,3 +380,21 @@ def test_the_design_grid_example(tmp_path):
         return
     said = _design_grid(tmp_path, tmp_path / "grid.png", hide_matplotlib=False)
     assert (tmp_path / "grid.png").stat().st_size > 0
+
+
+@pytest.mark.parametrize("with_pandas", [False, True])
+def test_the_readers_frames_with_and_without_pandas(tmp_path, monkeypatch, with_pandas):
+    import sys
+    import types
+    if with_pandas:  # a stand-in for pandas: the columns the readers hand it
+        fake = types.ModuleType("pandas")
+        fake.DataFrame = lambda columns: ("frame", columns)
+        monkeypatch.setitem(sys.modules, "pandas", fake)
+    else:
+        monkeypatch.setitem(sys.modules, "pandas", None)
+    run, sweep = _write_run_and_sweep(tmp_path)
+    r, s = snapjump.read_run(run), snapjump.read_sweep(sweep)
+    if with_pandas:
+        assert r["frame"] == ("frame", r["series"]) and s["frame"] == ("frame", s["table"])
+    else:
+        assert r["frame"] is None and s["frame"] is None
