@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "app/cli.hpp"
+#include "app/run.hpp"
 #include "io/folder_lock.hpp"
 #include "sweep/executor.hpp"
 #include "sweep/mpi_work.hpp"
@@ -41,10 +42,20 @@ int run_here(const sweep::Spec& spec, sweep::ExecOptions options, int jobs, bool
              spec.file.string(), spec.runs.size(), todo.size(), spec.runs.size() - todo.size(),
              options.jobs, options.threads, spec.output.string());
   std::size_t counter = 0;
+  // Ctrl-C stops the sweep: no run started after it, the running ones stopped and waited for.
+  const SigintStop stop;
+  options.stop_requested = [&stop] { return stop.requested(); };
   const auto report = sweep::execute(
       spec, todo, [&] { return std::optional(counter++); }, options, out);
   const fs::path table = spec.output / "sweep.csv";
   const int with_result = sweep::write_table(spec, table);
+  if (report.stopped) {
+    fmt::print(out,
+               "sweep stopped: {} of {} runs have a result, {} interrupted here; table {}; the "
+               "same command again goes on (interrupted runs resume from their checkpoints)\n",
+               with_result, spec.runs.size(), report.interrupted, table.string());
+    return kExitInterrupted;
+  }
   const int failed = failed_runs(spec);
   fmt::print(out, "sweep done: {} of {} runs have a result, {} failed ({} now); table {}\n",
              with_result, spec.runs.size(), failed, report.failed, table.string());
@@ -117,7 +128,7 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
           sweep::prepare_folder(spec);
         }
       } catch (const std::exception& e) {
-        fmt::print(err, "error: {}\n", e.what());
+        fmt::print(err, "error: {}\n", error_text(e, "preparing the sweep"));
         ok = false;
       }
     }
@@ -138,7 +149,7 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
           spec, todo, [&] { return std::optional(mpi.next()); }, options, out,
           [&] { mpi.progress(); });
     } catch (const std::exception& e) {
-      fmt::print(err, "rank {}: error: {}\n", mpi.rank(), e.what());
+      fmt::print(err, "rank {}: error: {}\n", mpi.rank(), error_text(e, "running the sweep"));
       run_ok = false;
     }
     const long failed = mpi.sum(report.failed);
@@ -151,7 +162,7 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
                    with_result, spec.runs.size(), all_failed, failed, table.string());
         if (all_failed > 0) run_ok = false;
       } catch (const std::exception& e) {
-        fmt::print(err, "error: {}\n", e.what());
+        fmt::print(err, "error: {}\n", error_text(e, "writing the sweep's table"));
         run_ok = false;
       }
     }
@@ -180,7 +191,7 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    fmt::print(err, "error: {}\n", e.what());
+    fmt::print(err, "error: {}\n", error_text(e, "running the sweep"));
     return kExitFailure;
   }
 }

@@ -7,10 +7,12 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <thread>
 
 extern char** environ;  // NOLINT: POSIX
@@ -157,7 +159,21 @@ ExecReport execute(const Spec& spec, const std::vector<std::size_t>& todo, const
     return true;
   };
 
+  std::optional<clock::time_point> stop_at;
+  bool forwarded = false;
   while (true) {
+    if (!stop_at && o.stop_requested && o.stop_requested()) {
+      stop_at = clock::now();
+      report.stopped = true;
+      exhausted = true;
+      log << fmt::format("{}stopping: no run is started; waiting for the {} running\n", o.label,
+                         running.size())
+          << std::flush;
+    }
+    if (stop_at && !forwarded && seconds(*stop_at) > kForwardAfter) {
+      for (const auto& [pid, r] : running) ::kill(pid, SIGINT);
+      forwarded = true;
+    }
     while (!exhausted && static_cast<int>(running.size()) < o.jobs) {
       if (!start_one()) exhausted = true;
     }
@@ -191,6 +207,11 @@ ExecReport execute(const Spec& spec, const std::vector<std::size_t>& todo, const
     if (state == RunState::Done) {
       ++report.finished;
       log << fmt::format("{}{} finished in {}\n", o.label, run.name, duration(took));
+    } else if (stop_at && (state == RunState::Resumable || state == RunState::Interrupted)) {
+      ++report.interrupted;
+      log << fmt::format(
+          "{}{} interrupted after {} ({})\n", o.label, run.name, duration(took),
+          state == RunState::Resumable ? "it resumes from its checkpoint" : "it starts again");
     } else {
       ++report.failed;
       const std::string why =
@@ -200,7 +221,7 @@ ExecReport execute(const Spec& spec, const std::vector<std::size_t>& todo, const
       log << fmt::format("{}{} FAILED after {} ({}); see {}\n", o.label, run.name, duration(took),
                          how, p.log.string());
     }
-    const int done_here = report.finished + report.failed;
+    const int done_here = report.finished + report.failed + report.interrupted;
     std::string eta;
     if (o.label.empty()) {  // one process sees the whole sweep: estimate what is left
       const double mean = busy / done_here;

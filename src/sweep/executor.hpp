@@ -23,14 +23,23 @@ struct ExecOptions {
   int threads = 1;                   // OpenMP threads per run
   bool retry_failed = false;         // run again what failed before
   std::string label;                 // prefix of progress lines ("rank 1: "), may be empty
+  // Asked a few times a second: true stops the sweep. No run is started after it; the running
+  // ones stop as a Ctrl-C stops them (a terminal's Ctrl-C reaches them too; a stop that did not
+  // is passed on to them as SIGINT after kForwardAfter) and are waited for.
+  std::function<bool()> stop_requested;
 };
+
+// How long a stopped sweep waits before it passes SIGINT on to its runs itself [s].
+inline constexpr double kForwardAfter = 2.0;
 
 // Hands out positions in the to-do list; nullopt when there are none left.
 using WorkSource = std::function<std::optional<std::size_t>()>;
 
 struct ExecReport {
-  int finished = 0;  // ran to a final status here
-  int failed = 0;    // failed here
+  int finished = 0;      // ran to a final status here
+  int failed = 0;        // failed here
+  int interrupted = 0;   // stopped by the stop request, to be resumed by the next sweep
+  bool stopped = false;  // the stop request came
 };
 
 // The runs that still need work (not done; failed ones only with retry_failed).

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -337,6 +338,60 @@ TEST(SweepExecute, RunsWhatIsLeftRecordsFailuresAndResumesInterruptedRuns) {
   EXPECT_EQ(r1.rfind("run-0001,failed,undetermined,", 0), 0u) << r1;
   EXPECT_NE(r1.find("not analysed (failed)"), std::string::npos) << r1;
   EXPECT_NE(r1.find("exit status 3"), std::string::npos);
+}
+
+// A stand-in for a run that goes on until SIGINT, then leaves a checkpoint and the status of an
+// interrupted run, as `snapjump run` does, and exits with 130.
+fs::path patient_program(const fs::path& dir) {
+  const fs::path exe = dir / "patient-snapjump";
+  write(exe, R"(#!/bin/sh
+echo "$@" >> ")" +
+                 (dir / "calls.txt").string() + R"("
+if [ "$2" = "--resume" ]; then out="$3"; else out="$4"; fi
+mkdir -p "$out"
+printf '{"status": "running"}' > "$out/summary.json"
+trap 'printf x > "$out/checkpoint.bin"; printf "{\"status\": \"interrupted at t = 0.1 s\"}" > "$out/summary.json"; exit 130' INT
+sleep 60 &
+wait $!
+)");
+  fs::permissions(exe, fs::perms::owner_all);
+  return exe;
+}
+
+// A stop request (Ctrl-C on the sweep): no run is started after it, the running ones get SIGINT
+// passed on when it did not reach them, and are waited for; they are interrupted, not failed, and
+// the next sweep resumes them.
+TEST(SweepExecute, AStopRequestStopsTheRunsAndLeavesThemToResume) {
+  const auto dir = scratch("stop");
+  auto spec = small_spec(dir);
+  prepare_folder(spec);
+  ExecOptions o;
+  o.executable = patient_program(dir);
+  o.jobs = 2;
+  const auto t0 = std::chrono::steady_clock::now();
+  o.stop_requested = [&] {
+    return std::chrono::steady_clock::now() - t0 > std::chrono::milliseconds(500);
+  };
+  std::ostringstream log;
+  const auto todo = runs_to_do(spec, false);
+  ASSERT_EQ(todo.size(), 3u);
+  std::size_t k = 0;
+  const auto report = execute(
+      spec, todo, [&] { return std::optional(k++); }, o, log);
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  EXPECT_TRUE(report.stopped);
+  EXPECT_EQ(report.interrupted, 2);
+  EXPECT_EQ(report.failed, 0);
+  EXPECT_LT(took, 30.0);           // the runs would have gone on for a minute
+  EXPECT_GT(took, kForwardAfter);  // SIGINT passed on only after the grace period
+  for (int i : {0, 1}) {
+    const auto p = paths_of(spec, spec.runs[static_cast<std::size_t>(i)]);
+    EXPECT_EQ(state_of(p), RunState::Resumable) << i;
+    EXPECT_FALSE(fs::exists(p.failed)) << i;
+  }
+  EXPECT_EQ(state_of(paths_of(spec, spec.runs[2])), RunState::New);  // never started
+  EXPECT_NE(log.str().find("run-0000 interrupted"), std::string::npos) << log.str();
+  EXPECT_EQ(runs_to_do(spec, false), (std::vector<std::size_t>{0, 1, 2}));
 }
 
 TEST(SweepTable, AnOutcomeIsNeverBlankAndAnUndeterminedOneCarriesItsReason) {
