@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <new>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <optional>
@@ -837,10 +838,22 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;
   } catch (const std::exception& e) {
-    fmt::print(err, "error: {}\n", e.what());
+    const auto subcommands = app.get_subcommands();
+    const auto doing =
+        fmt::format("running snapjump {}",
+                    subcommands.empty() ? std::string() : subcommands.front()->get_name());
+    fmt::print(err, "error: {}\n", error_text(e, doing));
     return kExitFailure;
   }
   return kExitOk;
+}
+
+std::string error_text(const std::exception& e, std::string_view doing) {
+  if (dynamic_cast<const std::bad_alloc*>(&e) != nullptr) {
+    return fmt::format(
+        "out of memory while {} (an input asks for more memory than the machine has left)", doing);
+  }
+  return e.what();
 }
 
 }  // namespace snapjump::app

@@ -1,8 +1,11 @@
 // The snapjump command line, as a library function so that tests can run it in-process.
 #pragma once
 
+#include <exception>
 #include <functional>
 #include <ostream>
+#include <string>
+#include <string_view>
 
 namespace snapjump::app {
 
@@ -24,6 +27,10 @@ struct CliHooks {
   // SIGINT itself (app::SigintStop).
   std::function<bool()> stop_requested;
 };
+
+// What an error that ends a command says: e.what(), except that running out of memory
+// (std::bad_alloc, whose what() is a bare "std::bad_alloc") says "out of memory while DOING".
+std::string error_text(const std::exception& e, std::string_view doing);
 
 int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& err,
             const CliHooks& hooks = {});

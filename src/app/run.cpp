@@ -913,7 +913,7 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
     return kExitInterrupted;
   } catch (const std::exception& e) {
     // Whatever stopped the run, its summary says so (a sweep reads "running" as alive).
-    record_failure(dir, e.what());
+    record_failure(dir, error_text(e, "running the simulation"));
     throw;
   }
 }

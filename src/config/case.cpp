@@ -12,6 +12,7 @@
 
 #include "config/files.hpp"
 #include "config/plausibility.hpp"
+#include "config/text.hpp"
 
 namespace snapjump::config {
 namespace {
@@ -175,7 +176,7 @@ class Reader {
       if (name == kTitleKey) {
         const auto* s = node.as_string();
         if (s == nullptr) fail(node.source(), "title must be a string");
-        c.title = s->get();
+        c.title = text::capped_title(s->get());
         continue;
       }
       const auto* table = node.as_table();

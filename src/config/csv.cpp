@@ -92,6 +92,10 @@ bool CsvReader::next(CsvRecord& record) {
       while (i < n && text[i] != separator_ && text[i] != '\n') ++i;
       cell = trim(text.substr(start, i - start));
     }
+    if (record.cells.size() == kMaxCells) {
+      problem_ = CsvProblem{record.line, fmt::format("more than {} cells on one line", kMaxCells)};
+      return false;
+    }
     record.cells.push_back(std::move(cell));
     if (i >= n) break;
     if (text[i] == '\n') {

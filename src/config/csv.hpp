@@ -33,7 +33,11 @@ struct CsvProblem {
 // written, an unquoted one without the spaces, tabs and carriage returns around it. A UTF-8
 // byte-order mark at the start is dropped.
 //
-// Records are read one at a time (a long laboratory log is never held as cells all at once).
+// Records are read one at a time (a long laboratory log is never held as cells all at once). A
+// record of more than kMaxCells cells breaks the rules: no table the project reads has that many
+// columns, and a line of separators alone would otherwise cost a string per cell.
+inline constexpr std::size_t kMaxCells = 1000;
+
 class CsvReader {
  public:
   CsvReader(std::string_view text, char separator);

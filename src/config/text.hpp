@@ -24,4 +24,11 @@ inline std::string lower(std::string_view s) {
   return out;
 }
 
+// The most bytes of a title (a case's, a sweep's, one read back from a run's summary) that is
+// kept when it is read: a title is one line of a figure and of the terminal.
+inline constexpr std::size_t kMaxTitleBytes = 200;
+
+// title cut to kMaxTitleBytes at a UTF-8 character's boundary, "..." marking the cut.
+std::string capped_title(std::string_view title);
+
 }  // namespace snapjump::text

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <system_error>
 
+#include "config/text.hpp"
 #include "measure/analysis.hpp"
 #include "measure/time_series.hpp"
 #include "plot/figures.hpp"
@@ -86,7 +87,7 @@ std::string summary_title(const json& summary) {
   if (c == summary.end() || !c->is_object()) return {};
   const auto t = c->find("title");
   if (t == c->end() || !t->is_string()) return {};
-  return t->get<std::string>();
+  return text::capped_title(t->get<std::string>());
 }
 
 // Time intervals [t0, t1) of one contact state, runs of equal rows.

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "config/files.hpp"
+#include "config/text.hpp"
 #include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/run_status.hpp"
@@ -28,6 +29,8 @@ namespace {
 constexpr std::string_view kResolutionKey = "numerics.resolution";
 constexpr std::string_view kModelKey = "numerics.model";
 constexpr std::string_view kBulkKey = "numerics.bulk_integration";
+// The most runs a sweep holds; a range's count is held to it before its values are made.
+constexpr std::int64_t kMaxRuns = 100000;
 
 std::string at(const fs::path& file, const toml::source_region& r) {
   return fmt::format("{}:{}", file.string(), r.begin.line);
@@ -129,6 +132,10 @@ std::vector<Setting> values_of(const fs::path& file, const std::string& key, con
           "{}: {}: a range needs from, to and count >= 2, e.g. {{ from = \"{}\", to = ..., "
           "count = 5 }}",
           origin, key, spec->example));
+    }
+    if (*count > kMaxRuns) {
+      throw SweepError(fmt::format("{}: {}: count = {} is more runs than a sweep holds ({})",
+                                   origin, key, *count, kMaxRuns));
     }
     if (scale != "linear" && scale != "log") {
       throw SweepError(fmt::format("{}: {}: scale must be \"linear\" or \"log\"", origin, key));
@@ -234,7 +241,7 @@ Spec parse_spec(std::string_view toml_text, const fs::path& file) {
     const std::string name(k.str());
     const std::string origin = at(file, k.source());
     if (name == "title") {
-      spec.title = node.value_or(std::string());
+      spec.title = text::capped_title(node.value_or(std::string()));
     } else if (name == "base") {
       const auto* s = node.as_string();
       if (s == nullptr) throw SweepError(fmt::format("{}: base must be a path (a string)", origin));
@@ -299,10 +306,17 @@ Spec parse_spec(std::string_view toml_text, const fs::path& file) {
   // The product: zip position outermost, then the [vary] keys, the last one fastest.
   const std::size_t nzip = zip.empty() ? 1 : zip.front().size();
   std::size_t nvary = 1;
-  for (const auto& v : vary) nvary *= v.size();
-  if (nzip * nvary > 100000) {
-    throw SweepError(fmt::format("{}: {} runs is more than a sweep should hold (100000)",
-                                 file.string(), nzip * nvary));
+  for (const auto& v : vary) {
+    // Held to the cap as it grows, so that a product of several long lists cannot overflow.
+    nvary *= v.size();
+    if (nzip * nvary > static_cast<std::size_t>(kMaxRuns)) {
+      throw SweepError(fmt::format("{}: {} runs or more is more than a sweep holds ({})",
+                                   file.string(), nzip * nvary, kMaxRuns));
+    }
+  }
+  if (nzip > static_cast<std::size_t>(kMaxRuns)) {
+    throw SweepError(
+        fmt::format("{}: {} runs is more than a sweep holds ({})", file.string(), nzip, kMaxRuns));
   }
   for (std::size_t z = 0; z < nzip; ++z) {
     for (std::size_t j = 0; j < nvary; ++j) {

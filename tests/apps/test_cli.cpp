@@ -1,6 +1,7 @@
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -465,6 +466,82 @@ TEST(Cli, AReciprocalOrShiftedUnitIsRefusedNamingTheKey) {
     EXPECT_EQ(r.code, kExitBadInput) << header << ": " << r.out;
     EXPECT_NE(r.err.find("is the reciprocal of a"), std::string::npos) << r.err;
   }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, InputsThatAskForUnboundedMemoryAreRefusedCheaply) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / fmt::format("snapjump_cli_unbounded_{}", ::getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto start = std::chrono::steady_clock::now();
+  // A range of 1e11 values: refused by the sweep's cap before one value is made.
+  std::ofstream(dir / "big.toml") << "title = \"big\"\n[vary]\n"
+                                     "friction.mu = {from = 0, to = 0.6, count = 100000000000}\n";
+  const auto sweep = run({"sweep", (dir / "big.toml").string(), "--dry-run"});
+  EXPECT_EQ(sweep.code, kExitBadInput) << sweep.out;
+  EXPECT_NE(sweep.err.find("friction.mu: count = 100000000000 is more runs than a sweep holds "
+                           "(100000)"),
+            std::string::npos)
+      << sweep.err;
+  // Two ranges of 1e5 each: 1e10 runs, refused as the product grows.
+  std::ofstream(dir / "product.toml")
+      << "[vary]\nfriction.mu = {from = 0, to = 0.6, count = 100000}\n"
+         "shell.h = {from = \"1 mm\", to = \"2 mm\", count = 100000}\n";
+  const auto product = run({"sweep", (dir / "product.toml").string(), "--dry-run"});
+  EXPECT_EQ(product.code, kExitBadInput);
+  EXPECT_NE(product.err.find("more than a sweep holds (100000)"), std::string::npos) << product.err;
+  // A header of 2e7 separators (20 MB).
+  std::ofstream(dir / "wide.csv") << "t,F" << std::string(20'000'000, ',') << "\n0,1\n";
+  const auto wide = run({"analyze", (dir / "wide.csv").string(), "--R", "30 mm"});
+  EXPECT_EQ(wide.code, kExitBadInput);
+  EXPECT_NE(wide.err.find("wide.csv:1: more than 1000 cells on one line"), std::string::npos)
+      << wide.err;
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  std::filesystem::remove_all(dir);
+}
+
+// Running out of memory ends a command with a message that says so and status 1: the command
+// runs in a child process whose address space is held to 32 MB more than it had, and reads a
+// record of 64 MB.
+TEST(Cli, RunningOutOfMemoryIsNamedNotABareBadAlloc) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   fmt::format("snapjump_cli_out_of_memory_{}", ::getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto record = dir / "huge.csv";
+  {
+    std::ofstream csv(record);
+    csv << "t,F\n";
+    const std::string row = "0.001,0.5\n";
+    for (std::size_t n = 0; n < 64u * 1024 * 1024 / row.size(); ++n) csv << row;
+  }
+  const auto err_file = dir / "err.txt";
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::ifstream statm("/proc/self/statm");
+    std::size_t pages = 0;
+    statm >> pages;
+    const auto limit =
+        static_cast<rlim_t>(pages) * static_cast<rlim_t>(::sysconf(_SC_PAGESIZE)) + (32u << 20);
+    const rlimit r{limit, limit};
+    if (::setrlimit(RLIMIT_AS, &r) != 0) ::_exit(100);
+    const auto result = run({"analyze", record.string(), "--R", "30 mm"});
+    { std::ofstream(err_file) << result.err; }
+    ::_exit(result.code);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child ended by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), kExitFailure);
+  std::ifstream in(err_file);
+  std::stringstream err;
+  err << in.rdbuf();
+  EXPECT_NE(err.str().find("error: out of memory while running snapjump analyze"),
+            std::string::npos)
+      << err.str();
+  EXPECT_EQ(err.str().find("std::bad_alloc"), std::string::npos) << err.str();
   std::filesystem::remove_all(dir);
 }
 

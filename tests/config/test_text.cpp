@@ -3,12 +3,14 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
 #include "config/csv.hpp"
 #include "config/files.hpp"
+#include "config/text.hpp"
 
 namespace snapjump::text {
 namespace {
@@ -100,6 +102,31 @@ TEST(Csv, BrokenQuotesNameTheLine) {
   EXPECT_EQ(problem("a,b\n1,\"open\nstill\n"), "t.csv:2: a quoted cell is never closed");
   EXPECT_EQ(problem("a,b\n\"x\"y,2\n"), "t.csv:2: text after the closing quote of a cell");
   EXPECT_EQ(problem("a,b\n\"x\"  ,2\n"), "no error");  // blanks after the quote are fine
+}
+
+TEST(Csv, ALineOfMoreThanAThousandCellsIsRefusedBeforeItsCellsAreMade) {
+  EXPECT_EQ(split(std::string(kMaxCells - 1, ',') + "\n1\n").front().cells.size(), kMaxCells);
+  EXPECT_EQ(problem("t,F\n1,2\n" + std::string(kMaxCells, ',') + "\n"),
+            "t.csv:3: more than 1000 cells on one line");
+  // 2e7 separators (20 MB): refused at once, without 2e7 strings.
+  const std::string wide = "t,F" + std::string(20'000'000, ',') + "\n0,1\n";
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_EQ(problem(wide), "t.csv:1: more than 1000 cells on one line");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+}
+
+TEST(Text, ATitleIsCutAtACharactersBoundary) {
+  EXPECT_EQ(capped_title("a popper"), "a popper");
+  const std::string exact(kMaxTitleBytes, 'x');
+  EXPECT_EQ(capped_title(exact), exact);
+  const auto cut = capped_title(std::string(100'000'000, 'y'));
+  EXPECT_EQ(cut, std::string(kMaxTitleBytes - 3, 'y') + "...");
+  // "é" is two bytes: the cut never splits it.
+  std::string accents;
+  while (accents.size() < 2 * kMaxTitleBytes) accents += "\xc3\xa9";
+  const auto cut_accents = capped_title("z" + accents);
+  EXPECT_LE(cut_accents.size(), kMaxTitleBytes);
+  EXPECT_EQ(cut_accents.substr(cut_accents.size() - 5), "\xc3\xa9...");
 }
 
 TEST(Csv, SeparatorOfTheHeaderLine) {

@@ -514,6 +514,26 @@ TEST(MshCheck, ACountTheFileCannotHoldIsRefusedAtOnce) {
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
+TEST(MshCheck, ANonFiniteNodeCoordinateIsNamedWithItsLine) {
+  // A NaN coordinate would otherwise reach the model (its gas volume comes out NaN).
+  auto lines = lines_of(cap_msh());
+  const auto nodes = std::find(lines.begin(), lines.end(), "$Nodes") - lines.begin();
+  std::size_t k = static_cast<std::size_t>(nodes) + 2;
+  while (k < lines.size() && (words(lines[k]).size() != 3 || words(lines[k])[0] == "2" ||
+                              lines[k].find('.') == std::string::npos)) {
+    ++k;
+  }
+  ASSERT_LT(k, lines.size());
+  const auto w = words(lines[k]);
+  for (const std::string bad : {"nan", "NaN", "-nan", "inf", "1e999"}) {
+    auto damaged = lines;
+    damaged[k] = fmt::format("{} {} {}", w[0], bad, w[2]);
+    expect_refused(joined(damaged),
+                   {fmt::format("line {}", k + 1), "$Nodes",
+                    "a node coordinate must be a finite number", "\"" + bad + "\""});
+  }
+}
+
 TEST(MshCheck, ATruncatedFileIsRefused) {
   const auto& good = cap_msh();
   for (const std::size_t cut : {good.size() / 3, 2 * good.size() / 3, good.find("$Elements") + 10,

@@ -15,6 +15,7 @@
 
 #include "app/cli.hpp"
 #include "config/case.hpp"
+#include "config/text.hpp"
 #include "plot/figures.hpp"
 #include "plot/snapshots.hpp"
 #include "plot/table.hpp"
@@ -586,6 +587,20 @@ TEST_F(Plot, HostileTitleIsNotRunByGnuplot) {
   const auto script = slurp(run_dir / "figures" / "series.gp");
   EXPECT_FALSE(contains(script, "\nsystem(")) << script;
   EXPECT_TRUE(contains(script, "system(''touch")) << "the title is kept, as text";
+}
+
+TEST_F(Plot, AHugeTitleIsCutBeforeItReachesGnuplot) {
+  const auto run_dir = make_run(dir_);
+  nlohmann::json summary = nlohmann::json::parse(slurp(run_dir / "summary.json"));
+  summary["case"]["title"] = "start of the title " + std::string(20'000'000, 'x') + " its end";
+  std::ofstream(run_dir / "summary.json") << summary.dump(2);
+  const auto r = run({"plot", "series", run_dir.string()});
+  ASSERT_EQ(r.code, app::kExitOk) << r.err << r.out;
+  const auto script = slurp(run_dir / "figures" / "series.gp");
+  EXPECT_LT(script.size(), 100'000u);
+  const std::string kept = "'start of the title " + std::string(text::kMaxTitleBytes - 22, 'x');
+  EXPECT_TRUE(contains(script, kept + "...'")) << script.substr(0, 2000);
+  EXPECT_FALSE(contains(script, "its end"));
 }
 
 TEST_F(Plot, HostileRunFolderNameIsNotRunByGnuplot) {
