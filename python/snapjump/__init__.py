@@ -10,15 +10,16 @@ this repository (README.md, "Python"), with the case keys and units of the case 
     d = snapjump.run(model="axisymmetric", resolution="coarse", progress=print)
     r = snapjump.read_run(d)                                          # numpy arrays (+ pandas)
     k = snapjump.compare("record.csv", d)                             # record beside the run
+    s = snapjump.design(jump_height="50 mm", net_weight="1 N")        # shells for a target
 
 Numbers are SI; text takes a unit ("30 mm"). A missing file raises FileNotFoundError, a bad
 value snapjump.InputError (a ValueError) naming it, any other failure snapjump.SnapjumpError.
 Ctrl-C stops a run as the command line's --pause-at does: run(resume=folder) continues it.
 """
-from ._core import (InputError, SnapjumpError, __version__, analyze, compare, contact, predict,
-                    read_run, read_sweep, run)
+from ._core import (InputError, SnapjumpError, __version__, analyze, compare, contact, design,
+                    predict, read_run, read_sweep, run)
 
-__all__ = ["predict", "contact", "analyze", "compare", "run", "read_run", "read_sweep",
+__all__ = ["predict", "contact", "analyze", "compare", "design", "run", "read_run", "read_sweep",
            "SnapjumpError", "InputError"]
 
 for _name in __all__:

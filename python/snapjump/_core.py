@@ -533,3 +533,66 @@ def compare(records, run_dir, columns=None, units=None, force_offset=None, settl
     else:
         result["frame"] = pd.DataFrame.from_dict(quantities, orient="index")
     return result
+
+
+def design(jump_height=None, peak_force=None, margin=None, t_star_max=None, footprint=None,
+           min_h=None, max_h_over_R=None, max_suction=None, net_weight_max=None,
+           rank="smallest", count=5, grid=None, branch=True, verify=None, model=None,
+           resolution=None, output=None, jobs=None, case=None, **values):
+    """The spherical caps that meet targets for a jump by the theory's lower bounds, as
+    `snapjump design ... --format json` (docs/design.md).
+
+    Targets (text with a unit or SI numbers): jump_height H at least a value ("50 mm") or
+    within a range ("40 mm..60 mm"); peak_force F* likewise ("2 N"); margin F* / mg at least
+    this (default 1); t_star_max t* at most this ("40 ms").
+    Constraints: footprint, the rim's diameter 2 R sin(phi) at most (default "100 mm"); min_h,
+    the thinnest wall ("0.5 mm"); max_h_over_R, the thickest shell (0.1); max_suction, the
+    pump's suction ("20 kPa"); net_weight_max: search the net weight from the case's up to this.
+    rank: "smallest" (footprint), "lightest" (shell), "margin" (F* / mg) or "highest" (H);
+    count designs (5); grid points per searched dimension (120); branch=False skips each
+    design's reverse snap.
+    verify: simulate the N best (a sweep in `output`, default "runs/design"), with model
+    ("axisymmetric" or "3d"), resolution ("coarse", "default", "fine") and jobs.
+    case: a case file or a dict of tables for the material, phi, the protocol and the apparatus;
+    values: case keys as in predict() (E="1.2 MPa", net_weight="1 N").
+
+    Returns a dict (SI): "designs" (each with "R", "h", "net_weight", "footprint", "shell_mass",
+    "zoelly_pc", "H", "F_star", "t_star", "jump_margin" as {"lower", "upper"}, "outcome",
+    "reverse_snap"), "pareto" (footprint against H's lower bound), "rank", "evaluated".
+    With verify, the simulation's report is printed and its runs are in output (read_sweep()).
+
+    Raises InputError when no design meets the targets (the message names what binds and by
+    how much) or for a bad value.
+    """
+    import json
+    for name in values:
+        _case_key(name)
+    if case is not None and not isinstance(case, dict):
+        _existing(case, "case file")
+    with _CaseFile(case) as files:
+        args = ["design", *_case_args(files, values)]
+        for name, v in (("--jump-height", jump_height), ("--peak-force", peak_force),
+                        ("--t-star-max", t_star_max), ("--footprint", footprint),
+                        ("--min-h", min_h), ("--max-suction", max_suction),
+                        ("--net-weight-max", net_weight_max)):
+            if v is not None:
+                args += [name, _value(v)]
+        for name, v in (("--margin", margin), ("--max-h-over-R", max_h_over_R),
+                        ("--grid", grid), ("--jobs", jobs)):
+            if v is not None:
+                args += [name, str(v)]
+        args += ["--rank", rank, "--count", str(int(count)), "--format", "json"]
+        if not branch:
+            args.append("--no-branch")
+        if verify is not None:
+            args += ["--verify", str(int(verify))]
+            for name, v in (("--model", model), ("--resolution", resolution),
+                            ("--output", output)):
+                if v is not None:
+                    args += [name, os.fspath(v)]
+        out = _call(args)
+    # The designs' JSON first; with verify, the simulation's report after it.
+    result, end = json.JSONDecoder().raw_decode(out)
+    if out[end:].strip():
+        print(out[end:].strip())
+    return result

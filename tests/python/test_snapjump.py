@@ -333,7 +333,8 @@ def test_every_public_function_explains_itself():
     for name in snapjump.__all__:
         doc = getattr(snapjump, name).__doc__
         assert doc and len(doc.split()) > 10, name
-    for name in ("predict", "contact", "analyze", "compare", "run", "read_run", "read_sweep"):
+    for name in ("predict", "contact", "analyze", "compare", "design", "run", "read_run",
+                 "read_sweep"):
         assert "Returns" in getattr(snapjump, name).__doc__, name
     text = pydoc.render_doc(snapjump.run, renderer=pydoc.plaintext)
     for words in ("end_time", "seconds", "resolution", "progress", "Returns the run's folder",
@@ -398,3 +399,14 @@ def test_the_readers_frames_with_and_without_pandas(tmp_path, monkeypatch, with_
         assert r["frame"] == ("frame", r["series"]) and s["frame"] == ("frame", s["table"])
     else:
         assert r["frame"] is None and s["frame"] is None
+
+
+def test_design_meets_its_target_through_predict():
+    d = snapjump.design(jump_height="50 mm", net_weight="1 N", E="1.2 MPa", count=2,
+                        branch=False)
+    assert d["designs"]
+    for x in d["designs"]:
+        p = snapjump.predict(R=x["R"], h=x["h"], net_weight="1 N", E="1.2 MPa")
+        assert p["quantities"]["H"]["lower"] >= 0.050
+    with pytest.raises(snapjump.InputError, match="misses by"):
+        snapjump.design(jump_height="100 m", branch=False)
