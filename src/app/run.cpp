@@ -474,12 +474,21 @@ class Run {
   [[nodiscard]] double wall() const {
     return std::chrono::duration<double>(Clock::now() - start_).count();
   }
-  // The run's wall time so far, the parts before a resume included, into the summary.
-  void note_wall_time() { summary_["wall_time"] = earlier_wall_ + wall(); }
+  // The run's wall time so far, the parts before a resume included, into the summary: the sum
+  // as wall_time, each part (this one last) as wall_time_parts.
+  void note_wall_time() {
+    auto parts = nlohmann::json::array();
+    for (const double p : earlier_parts_) parts.push_back(p);
+    const double now = wall();
+    parts.push_back(now);
+    summary_["wall_time"] = earlier_wall_ + now;
+    summary_["wall_time_parts"] = parts;
+  }
   // A resumed run keeps what its first part knew and the folder's case.toml does not: where the
   // case came from, which values were defaults, and the wall time of the parts before.
   void keep_earlier_summary(const nlohmann::json& before);
   double earlier_wall_ = 0.0;
+  std::vector<double> earlier_parts_;
   void snapshot();
   popper::Sample record();
   // The preparation's progress line for a phase; stops the run when the user asked.
@@ -641,9 +650,18 @@ void Run::keep_earlier_summary(const nlohmann::json& before) {
       if (before["case"].contains(key)) summary_["case"][key] = before["case"][key];
     }
   }
-  if (before.contains("wall_time") && before["wall_time"].is_number()) {
-    earlier_wall_ = std::max(0.0, before["wall_time"].get<double>());
+  const auto parts = before.find("wall_time_parts");
+  if (parts != before.end() && parts->is_array()) {
+    for (const auto& p : *parts) {
+      if (p.is_number() && std::isfinite(p.get<double>())) {
+        earlier_parts_.push_back(std::max(0.0, p.get<double>()));
+      }
+    }
+  } else if (before.contains("wall_time") && before["wall_time"].is_number()) {
+    earlier_parts_.push_back(std::max(0.0, before["wall_time"].get<double>()));
   }
+  earlier_wall_ = 0.0;
+  for (const double p : earlier_parts_) earlier_wall_ += p;
 }
 
 void Run::resume() {

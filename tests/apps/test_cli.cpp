@@ -1032,6 +1032,24 @@ TEST(RunEnd, AResumedRunKeepsItsCasesOriginAndItsWholeWallTime) {
   EXPECT_EQ(after["case"]["source"], before["case"]["source"]);
   EXPECT_EQ(after["case"]["defaults_used"], before["case"]["defaults_used"]);
   EXPECT_GT(after["wall_time"].get<double>(), before["wall_time"].get<double>());
+  // Each part's wall time, the first as the first part's summary gave it; wall_time their sum.
+  ASSERT_EQ(before["wall_time_parts"].size(), 1u);
+  ASSERT_EQ(after["wall_time_parts"].size(), 2u);
+  EXPECT_DOUBLE_EQ(after["wall_time_parts"][0].get<double>(), before["wall_time"].get<double>());
+  EXPECT_NEAR(after["wall_time"].get<double>(),
+              after["wall_time_parts"][0].get<double>() + after["wall_time_parts"][1].get<double>(),
+              1e-9);
+  // A third part, from a summary that a killed run left with only its wall_time so far.
+  auto edited = after;
+  edited.erase("wall_time_parts");
+  edited["status"] = "running";
+  std::ofstream(dir / "summary.json") << edited.dump(2);
+  const auto again = run({"run", "--resume", dir.string(), "--end-time", "40ms", "--quiet"});
+  ASSERT_EQ(again.code, kExitOk) << again.err;
+  const auto third = summary_of(dir);
+  ASSERT_EQ(third["wall_time_parts"].size(), 2u);
+  EXPECT_DOUBLE_EQ(third["wall_time_parts"][0].get<double>(), after["wall_time"].get<double>());
+  EXPECT_EQ(third["case"]["defaults_used"], before["case"]["defaults_used"]);
 }
 
 // Starts the command line `words` (the binary first) in a child process with SIGINT at its
