@@ -25,6 +25,7 @@
 #include "app/run.hpp"
 #include "app/sweep_command.hpp"
 #include "config/case.hpp"
+#include "config/text.hpp"
 #include "contact/contact.hpp"
 #include "io/csv.hpp"
 #include "io/prediction_report.hpp"
@@ -769,10 +770,10 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
                  "snapjump mesh: {}\n  cap         R = {:.4g} mm, h = {:.4g} mm, phi = {:.4g} deg, "
                  "element size {:.3g} mm, {} layers ({} resolution)\n  mesh        {} ten-node "
                  "tetrahedra, {} nodes; groups shell, inner, clamped, outer\n  written     {}\n",
-                 c.title.empty() ? c.source : c.title, 1e3 * spec.R, 1e3 * spec.h,
-                 spec.phi * 180.0 / std::numbers::pi, 1e3 * spec.element_size, spec.layers,
-                 config::to_string(c.numerics.resolution), m.tets.size(), m.nodes.size(),
-                 mesh_output);
+                 text::printable_line(c.title.empty() ? c.source : c.title), 1e3 * spec.R,
+                 1e3 * spec.h, spec.phi * 180.0 / std::numbers::pi, 1e3 * spec.element_size,
+                 spec.layers, config::to_string(c.numerics.resolution), m.tets.size(),
+                 m.nodes.size(), mesh_output);
       return kExitOk;
     }
     if (sweep_cmd.parsed()) return sweep_cmd.run(out, err);

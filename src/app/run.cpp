@@ -21,6 +21,7 @@
 
 #include "app/checkpoint.hpp"
 #include "app/cli.hpp"
+#include "config/text.hpp"
 #include "config/units.hpp"
 #include "io/atomic_file.hpp"
 #include "io/folder_lock.hpp"
@@ -898,8 +899,9 @@ int run_simulation(const config::Case& case_in, const RunOptions& options, std::
   if (!resuming) dir = make_output_folder(c, options.output);
   // One process per run folder: a second resume of the same run is refused.
   const io::FolderLock lock(dir, "run.lock", "the run folder");
-  fmt::print(out, "snapjump run: {}\n  output      {}{}\n", c.title.empty() ? c.source : c.title,
-             describe_folder(dir), resuming ? " (resumed)" : "");
+  fmt::print(out, "snapjump run: {}\n  output      {}{}\n",
+             text::printable_line(c.title.empty() ? c.source : c.title), describe_folder(dir),
+             resuming ? " (resumed)" : "");
   nlohmann::json summary = {{"case", io::case_to_json(c)}, {"status", io::run_status::kRunning}};
   if (!resuming) write_case(dir, c, summary);
 

@@ -24,6 +24,19 @@ inline std::string lower(std::string_view s) {
   return out;
 }
 
+// The most characters of a file's text that an error message quotes.
+inline constexpr std::size_t kMaxExcerpt = 40;
+
+// Text from a file the user named, as an error message may quote it: at most kMaxExcerpt bytes
+// ("..." marking a cut), a newline as \n, a tab as \t and every other byte that is not printable
+// ASCII as \xNN, so that a message neither echoes a whole file nor sends control sequences to a
+// terminal.
+std::string excerpt(std::string_view text, std::size_t max_bytes = kMaxExcerpt);
+
+// A title (or another line of the user's) for the terminal: control characters (below 0x20, and
+// 0x7f) as \xNN, newlines as \n; other bytes (UTF-8) kept.
+std::string printable_line(std::string_view text);
+
 // The most bytes of a title (a case's, a sweep's, one read back from a run's summary) that is
 // kept when it is read: a title is one line of a figure and of the terminal.
 inline constexpr std::size_t kMaxTitleBytes = 200;

@@ -120,8 +120,8 @@ void check_exponent(std::string_view unit, std::string_view digits, bool negativ
                      std::stoi(std::string(digits)) > 0;
   if (!small) {
     throw UnitError(fmt::format(
-        "the unit '{}' has the power {}{}; a unit's powers are whole numbers from -{} to {}", unit,
-        negative ? "-" : "", digits, kMaxExponent, kMaxExponent));
+        "the unit '{}' has the power {}{}; a unit's powers are whole numbers from -{} to {}",
+        text::excerpt(unit), negative ? "-" : "", digits, kMaxExponent, kMaxExponent));
   }
 }
 
@@ -150,7 +150,7 @@ std::size_t skip_power(std::string_view unit, std::size_t i) {
   const std::size_t first = k;
   while (k < s.size() && std::isdigit(static_cast<unsigned char>(s[k])) != 0) ++k;
   if (k == first) {
-    if (marked) throw UnitError(fmt::format("cannot read the unit '{}'", unit));
+    if (marked) throw UnitError(fmt::format("cannot read the unit '{}'", text::excerpt(unit)));
     return i;  // no power: a '-' here is a product ("kg-m")
   }
   check_exponent(unit, s.substr(first, k - first), sign < first && s[sign] == '-');
@@ -162,7 +162,7 @@ std::size_t skip_power(std::string_view unit, std::size_t i) {
     throw UnitError(fmt::format(
         "the unit '{}' {}; write a product of units and their powers (e.g. \"kg/m^3\", \"Pa^-1 "
         "s^-2\")",
-        unit, what));
+        text::excerpt(unit), what));
   };
   std::size_t i = 0;
   while (i < unit.size()) {
@@ -175,7 +175,8 @@ std::size_t skip_power(std::string_view unit, std::size_t i) {
       }
       const auto name = text::lower(unit.substr(first, i - first));
       if (name == "after" || name == "from" || name == "since" || name == "ref") {
-        refuse(fmt::format("shifts its origin with '{}'", unit.substr(first, i - first)));
+        refuse(fmt::format("shifts its origin with '{}'",
+                           text::excerpt(unit.substr(first, i - first))));
       }
       const auto next = unit.find_first_not_of(' ', i);
       const bool call = next != std::string_view::npos && unit[next] == '(';
@@ -197,7 +198,7 @@ std::size_t skip_power(std::string_view unit, std::size_t i) {
     } else if (std::string_view(" */.()-").find(static_cast<char>(ch)) != std::string_view::npos) {
       ++i;
     } else {
-      refuse(fmt::format("holds '{}'", static_cast<char>(ch)));
+      refuse(fmt::format("holds '{}'", text::excerpt(std::string(1, static_cast<char>(ch)))));
     }
   }
 }
@@ -231,9 +232,9 @@ struct UnitParser::Impl {
     if (!u) {
       const auto status = ut_get_status();
       if (status == UT_SYNTAX) {
-        throw UnitError(fmt::format("cannot read the unit '{}'", text));
+        throw UnitError(fmt::format("cannot read the unit '{}'", text::excerpt(text)));
       }
-      throw UnitError(fmt::format("unknown unit '{}'", text));
+      throw UnitError(fmt::format("unknown unit '{}'", text::excerpt(text)));
     }
     return u;
   }
@@ -284,7 +285,8 @@ struct UnitParser::Impl {
     const auto& r = row(expected);
     if (expected == Dimension::Dimensionless) {
       if (!unit_str.empty()) {
-        throw UnitError(fmt::format("takes a plain number without unit, not '{}'", unit_str));
+        throw UnitError(
+            fmt::format("takes a plain number without unit, not '{}'", text::excerpt(unit_str)));
       }
       return value;
     }
@@ -300,7 +302,8 @@ struct UnitParser::Impl {
     if (!factor || !one_name) {
       const auto what = factor ? std::string("not an angle's unit") : describe(given.get());
       throw UnitError(fmt::format("'{}' is {}, but {} is needed (in {} or a multiple, e.g. \"{}\")",
-                                  unit_str, what, with_article(r.name), r.shown, r.example));
+                                  text::excerpt(unit_str), what, with_article(r.name), r.shown,
+                                  r.example));
     }
     return value * *factor;
   }
@@ -335,15 +338,17 @@ double UnitParser::parse(std::string_view text, Dimension expected) const {
   }
   const auto n = leading_number(s);
   if (n.ec == std::errc::result_out_of_range) {
-    throw UnitError(fmt::format("'{}' is out of range", s));
+    throw UnitError(fmt::format("'{}' is out of range", text::excerpt(s)));
   }
   if (n.ec != std::errc() || n.rest.size() == s.size()) {
-    throw UnitError(
-        fmt::format("'{}' does not start with a number (e.g. \"{}\")", s, row(expected).example));
+    throw UnitError(fmt::format("'{}' does not start with a number (e.g. \"{}\")", text::excerpt(s),
+                                row(expected).example));
   }
-  if (!std::isfinite(n.value)) throw UnitError(fmt::format("'{}' is not a finite number", s));
+  if (!std::isfinite(n.value))
+    throw UnitError(fmt::format("'{}' is not a finite number", text::excerpt(s)));
   const double si = impl_->to_si(n.value, n.rest, expected);
-  if (!std::isfinite(si)) throw UnitError(fmt::format("'{}' is not a finite number", s));
+  if (!std::isfinite(si))
+    throw UnitError(fmt::format("'{}' is not a finite number", text::excerpt(s)));
   return si;
 }
 

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
+#include "config/text.hpp"
 #include "io/csv.hpp"
 
 namespace snapjump::io {
@@ -75,7 +76,8 @@ std::vector<ReportRow> prediction_rows(const theory::Prediction& p) {
 
 void write_table(std::ostream& out, const config::Case& c, const theory::Prediction& p) {
   constexpr double deg = 180.0 / std::numbers::pi;
-  fmt::print(out, "snapjump predict: {}\n", c.title.empty() ? c.source : c.title);
+  fmt::print(out, "snapjump predict: {}\n",
+             text::printable_line(c.title.empty() ? c.source : c.title));
   fmt::print(out, "  case          {}\n", c.source);
   fmt::print(out, "  shell         R = {} mm, h = {} mm, phi = {} deg  (h/R = {:.4g})\n",
              number(c.shell.R * 1e3), number(c.shell.h * 1e3), number(c.shell.phi * deg),

@@ -93,7 +93,7 @@ HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::
   HeaderColumn c;
   c.text = std::string(trim(cell));
   const auto fail = [&](std::string_view why) {
-    return SeriesError(fmt::format("{}: column {} '{}': {}", at, k, c.text, why));
+    return SeriesError(fmt::format("{}: column {} '{}': {}", at, k, text::excerpt(c.text), why));
   };
   if (c.text.empty() || is_pandas_index(c.text)) {
     return c;  // an index column (pandas) or a trailing separator: skipped
@@ -174,8 +174,8 @@ HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::
   for (const auto& [col, u] : options.units) {
     if (col != c.name) continue;
     if (unit && trim(*unit) != trim(u)) {
-      throw fail(
-          fmt::format("the header gives the unit '{}' and the options '{}': give one", *unit, u));
+      throw fail(fmt::format("the header gives the unit '{}' and the options '{}': give one",
+                             text::excerpt(*unit), text::excerpt(u)));
     }
     unit = u;
   }
@@ -250,7 +250,8 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
     for (std::size_t j = 0; j < header.size() && !c.name.empty(); ++j) {
       if (header[j].name == c.name) {
         throw SeriesError(fmt::format("{}: column {} '{}': the name '{}' is also column {} '{}'",
-                                      at(), k + 1, c.text, c.name, j + 1, header[j].text));
+                                      at(), k + 1, text::excerpt(c.text), text::excerpt(c.name),
+                                      j + 1, text::excerpt(header[j].text)));
       }
     }
     if (c.is_contact) contact_col = k;
@@ -262,8 +263,8 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
     const bool found = std::any_of(header.begin(), header.end(),
                                    [wanted](const HeaderColumn& h) { return h.text == wanted; });
     if (!found) {
-      std::vector<std::string_view> have;
-      for (const auto& h : header) have.push_back(h.text);
+      std::vector<std::string> have;
+      for (const auto& h : header) have.push_back(text::excerpt(h.text));
       throw SeriesError(fmt::format("{}: the column mapping {}=\"{}\" names no column; it has: {}",
                                     at(), to, from, fmt::join(have, ", ")));
     }
@@ -281,8 +282,8 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
     for (const auto& h : header) {
       if (h.name == name) return;
     }
-    std::vector<std::string_view> have;
-    for (const auto& h : header) have.push_back(h.text);
+    std::vector<std::string> have;
+    for (const auto& h : header) have.push_back(text::excerpt(h.text));
     throw SeriesError(fmt::format(
         "{}: the header has no '{}' column ({}, required); it has: {} (name it with a column "
         "mapping, e.g. --column {}=\"Time (s)\")",
@@ -312,7 +313,7 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
     if (cells.size() < header.size()) {
       throw SeriesError(fmt::format(
           "{}: {} cells, but the header has {} columns (column {} '{}' is missing)", at(),
-          cells.size(), header.size(), cells.size() + 1, header[cells.size()].text));
+          cells.size(), header.size(), cells.size() + 1, text::excerpt(header[cells.size()].text)));
     }
     if (cells.size() > header.size()) {
       throw SeriesError(fmt::format("{}: {} cells, but the header has only {} columns", at(),
@@ -325,8 +326,8 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
       const auto k = numeric_cols[i];
       if (is_missing(cells[k])) {
         if (i == time_pos) {
-          throw SeriesError(
-              fmt::format("{}: column {} '{}': the time is empty", at(), k + 1, header[k].text));
+          throw SeriesError(fmt::format("{}: column {} '{}': the time is empty", at(), k + 1,
+                                        text::excerpt(header[k].text)));
         }
         gaps_anywhere = true;
         continue;
@@ -338,7 +339,8 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
       }
       if (!v) {
         throw SeriesError(fmt::format("{}: column {} '{}': '{}' is not a finite number", at(),
-                                      k + 1, header[k].text, trim(cells[k])));
+                                      k + 1, text::excerpt(header[k].text),
+                                      text::excerpt(trim(cells[k]))));
       }
       row.values[i] = *v * header[k].to_si;
     }
@@ -384,7 +386,8 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
         throw SeriesError(fmt::format(
             "{}:{}: column '{}': time {} s is also on line {} with another value ({} against {}): "
             "time must increase from row to row",
-            source, r.line, header[numeric_cols[i]].text, r.t, m.line, *r.values[i], *m.values[i]));
+            source, r.line, text::excerpt(header[numeric_cols[i]].text), r.t, m.line, *r.values[i],
+            *m.values[i]));
       }
       m.values[i] = r.values[i];
     }

@@ -414,6 +414,12 @@ TEST(Cli, DesignsMeetTheirTargetsThroughPredict) {
     EXPECT_EQ(q["outcome_text"], "Jump");
     EXPECT_LE(d["footprint"].get<double>(), 0.080 + 1e-12);
   }
+  const auto energy =
+      run({"design", "--energy", "5mJ", "--count", "2", "--no-branch", "--format", "json"});
+  ASSERT_EQ(energy.code, kExitOk) << energy.err;
+  for (const auto& d : nlohmann::json::parse(energy.out)["designs"]) {
+    EXPECT_GE(d["stored_energy"].get<double>(), 5e-3);
+  }
   const auto none = run({"design", "--jump-height", "100m", "--no-branch"});
   EXPECT_EQ(none.code, kExitBadInput);
   EXPECT_NE(none.err.find("misses by"), std::string::npos) << none.err;
@@ -542,6 +548,42 @@ TEST(Cli, RunningOutOfMemoryIsNamedNotABareBadAlloc) {
             std::string::npos)
       << err.str();
   EXPECT_EQ(err.str().find("std::bad_alloc"), std::string::npos) << err.str();
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, AnErrorQuotesAShortEscapedExcerptOfTheFile) {
+  const auto dir =
+      std::filesystem::temp_directory_path() / fmt::format("snapjump_cli_excerpt_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  // A file that is not a record: its first line is not echoed whole.
+  const std::string secret = "root:$6$saltsalt$" + std::string(80, 'H') + ":19000:0:99999:7:::";
+  std::ofstream(dir / "shadow") << secret << "\nbin:*:19000\n";
+  const auto r = run({"analyze", (dir / "shadow").string(), "--R", "30 mm"});
+  EXPECT_EQ(r.code, kExitBadInput);
+  EXPECT_NE(r.err.find(secret.substr(0, 20)), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(secret.substr(0, 41)), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("19000"), std::string::npos) << r.err;
+  // Control characters in a header or a cell reach the terminal escaped, and a forged line
+  // cannot start.
+  std::ofstream(dir / "esc.csv") << "t,\"F\x1b[31m\nerror: forged\"\n0,1\n1,abc\x1b[2J\n";
+  const auto e = run({"analyze", (dir / "esc.csv").string(), "--R", "30 mm"});
+  EXPECT_EQ(e.code, kExitBadInput);
+  EXPECT_EQ(e.err.find('\x1b'), std::string::npos) << e.err;
+  EXPECT_EQ(e.err.find("\nerror: forged"), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find("\\x1B"), std::string::npos) << e.err;
+  // A title with an escape sequence and a line break is printed escaped.
+  std::ifstream default_case(example("default.toml"));
+  std::stringstream with_title;
+  for (std::string line; std::getline(default_case, line);) {
+    with_title << (line.starts_with("title") ? "title = \"pop\\u001b[2J\\nerror: forged\"" : line)
+               << "\n";
+  }
+  std::ofstream(dir / "title.toml") << with_title.str();
+  const auto t = run({"predict", (dir / "title.toml").string()});
+  EXPECT_EQ(t.code, kExitOk) << t.err;
+  EXPECT_EQ(t.out.find('\x1b'), std::string::npos);
+  EXPECT_NE(t.out.find("snapjump predict: pop\\x1B[2J\\nerror: forged"), std::string::npos)
+      << t.out.substr(0, 300);
   std::filesystem::remove_all(dir);
 }
 
