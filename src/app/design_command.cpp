@@ -17,6 +17,7 @@
 #include "app/sweep_command.hpp"
 #include "io/atomic_file.hpp"
 #include "io/folder_lock.hpp"
+#include "plot/design_figure.hpp"
 #include "popper/reverse_snap.hpp"
 #include "sweep/sweep.hpp"
 #include "theory/design.hpp"
@@ -105,9 +106,9 @@ void write_table(std::ostream& out, const std::vector<Row>& rows, const theory::
   k = 0;
   for (const auto& r : rows) {
     ++k;
-    if (!r.reverse) {
+    if (!r.reverse && r.reverse_why != "--no-branch") {
       fmt::print(out, "  #{}: reverse snap not computed: {}\n", k, r.reverse_why);
-    } else if (!std::isfinite(r.reverse->p_hold)) {
+    } else if (r.reverse && !std::isfinite(r.reverse->p_hold)) {
       fmt::print(out,
                  "  #{}: the axisymmetric branch reaches no fully inverted state{}: this model "
                  "cannot verify it (try --model 3d)\n",
@@ -164,6 +165,8 @@ DesignCommand::DesignCommand(CLI::App& app) {
       ->group("Targets");
   cmd_->add_option("--margin", margin_, "F* / mg at least this (default 1: a sure jump)")
       ->group("Targets");
+  cmd_->add_option("--energy", energy_, "stored energy of the inverted shell at least this (1mJ)")
+      ->group("Targets");
   cmd_->add_option("--t-star-max", t_star_, "t* (the apex's touch-down to the launch) at most")
       ->group("Targets");
   cmd_->add_option("--net-weight-max", net_weight_max_,
@@ -187,6 +190,9 @@ DesignCommand::DesignCommand(CLI::App& app) {
       ->check(CLI::Range(2, 2000));
   cmd_->add_option("--format", format_, "table, csv or json")
       ->check(CLI::IsMember({"table", "csv", "json"}));
+  cmd_->add_option("--figure", figure_,
+                   "draw the searched designs in the Fig. 3(c) plane (h/R against E h^2/mg) into "
+                   "this image (.png or .svg)");
   cmd_->add_flag("--no-branch", no_branch_,
                  "skip each listed design's reverse snap (whether delta_p_j holds it inverted)");
   cmd_->add_option("--verify", verify_, "simulate the N best designs (a sweep in --output)")
@@ -316,6 +322,28 @@ int verify(const config::Case& base, const std::vector<Row>& rows, const theory:
 
 }  // namespace
 
+namespace {
+
+// The design figure, or a warning when gnuplot fails; returns the line that says where it is.
+std::string draw(const theory::DesignResult& res, const std::string& file, std::ostream& err) {
+  plot::FigureOptions fo;
+  fo.output = file;
+  const auto ext = fo.output.extension().string();
+  const auto f = plot::parse_format(ext.empty() ? "" : ext.substr(1));
+  if (!f) throw config::CaseError(fmt::format("--figure {}: name the file .png or .svg", file));
+  fo.format = *f;
+  if (const char* g = std::getenv("SNAPJUMP_GNUPLOT"); g != nullptr && *g != '\0') fo.gnuplot = g;
+  try {
+    const auto r = plot::plot_design(res, res.designs.front().prediction.alpha.alpha_F, fo);
+    return fmt::format("figure {} (script {})", r.figure.string(), r.script.string());
+  } catch (const plot::PlotError& e) {
+    fmt::print(err, "warning: the figure could not be drawn: {}\n", e.what());
+    return {};
+  }
+}
+
+}  // namespace
+
 int DesignCommand::run(std::ostream& out, std::ostream& err) const {
   const auto base = base_.load(err);
   const units::UnitParser parser;
@@ -324,6 +352,9 @@ int DesignCommand::run(std::ostream& out, std::ostream& err) const {
   if (!force_.empty()) t.F_star = target(parser, force_, units::Dimension::Force, "--peak-force");
   if (!(margin_ > 0.0)) throw config::CaseError("--margin must be positive");
   t.margin = margin_;
+  if (!energy_.empty()) {
+    t.energy = positive_option(parser, energy_, units::Dimension::Energy, "--energy");
+  }
   if (!t_star_.empty())
     t.t_star = positive_option(parser, t_star_, units::Dimension::Time, "--t-star-max");
   theory::DesignSpace s;
@@ -343,6 +374,8 @@ int DesignCommand::run(std::ostream& out, std::ostream& err) const {
   const auto res = theory::design(base, t, s, rank, count_);
   if (res.designs.empty()) throw config::CaseError("design: " + res.infeasible);
 
+  std::string figure_line;
+  if (!figure_.empty()) figure_line = draw(res, figure_, err);
   std::vector<Row> rows;
   for (const auto& d : res.designs) {
     Row r{d, std::nullopt, "--no-branch"};
@@ -376,6 +409,7 @@ int DesignCommand::run(std::ostream& out, std::ostream& err) const {
                "case gives it; the theory's lower bounds meet every target\n",
                base.material.E / 1e6, base.material.nu, base.shell.phi * 180.0 / std::numbers::pi);
     write_table(out, rows, res, theory::to_string(rank));
+    if (!figure_line.empty()) fmt::print(out, "  {}\n", figure_line);
   }
   if (verify_ > 0) {
     return verify(base, rows, t, {verify_, model_, resolution_, output_, jobs_}, out);

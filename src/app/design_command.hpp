@@ -24,8 +24,8 @@ class DesignCommand {
  private:
   CLI::App* cmd_ = nullptr;
   CaseOptions base_;
-  std::string height_, force_, t_star_, net_weight_max_, footprint_ = "100 mm", min_h_ = "0.5 mm",
-                                                         suction_;
+  std::string height_, force_, energy_, t_star_, net_weight_max_, footprint_ = "100 mm",
+                                                                  min_h_ = "0.5 mm", suction_;
   double margin_ = 1.0;
   double max_h_over_R_ = 0.1;
   std::string rank_ = "smallest";
@@ -33,6 +33,7 @@ class DesignCommand {
   int grid_ = 120;
   std::string format_ = "table";
   bool no_branch_ = false;
+  std::string figure_;
   int verify_ = 0;
   std::string model_ = "axisymmetric", resolution_ = "default", output_ = "runs/design";
   int jobs_ = 0;

@@ -39,6 +39,7 @@ constexpr std::array kDimensions{
     DimensionRow{Dimension::ValveRate, "inverse pressure per time", "Pa^-1 s^-1", "Pa^-1 s^-1",
                  "5.0e-5 Pa^-1 s^-1"},
     DimensionRow{Dimension::Stiffness, "stiffness", "N/m", "N/m", "3 kN/m"},
+    DimensionRow{Dimension::Energy, "energy", "J", "J", "1 mJ"},
 };
 
 const DimensionRow& row(Dimension d) {

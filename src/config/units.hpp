@@ -30,6 +30,7 @@ enum class Dimension {
   ValveAcceleration,  // Pa^-1 s^-2 (the gas law's alpha_n)
   ValveRate,          // Pa^-1 s^-1 (the gas law's beta_n)
   Stiffness,          // N/m (a spring: the counterweight's wire)
+  Energy,             // J (a design's stored energy)
 };
 
 // "length", "pressure", ...

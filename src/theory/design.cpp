@@ -209,6 +209,8 @@ DesignResult design(const config::Case& base, const DesignTargets& targets,
             d.binding = std::move(s.what);
           }
         }
+        result.points.push_back(
+            {h / R, base.material.E * h * h / mg, d.prediction.H.lo, d.slack >= 0.0});
         if (d.slack >= 0.0) {
           feasible.push_back(d);
         } else if (!result.closest || d.slack > result.closest->slack) {

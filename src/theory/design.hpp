@@ -59,6 +59,14 @@ struct Design {
   std::string binding;  // the target or constraint of that smallest slack
 };
 
+// One searched design in the paper's Fig. 3(c) plane, for the design figure.
+struct DesignPoint {
+  double h_over_R = 0.0;
+  double load = 0.0;     // E h^2 / mg
+  double H_lower = 0.0;  // H's lower bound [m]
+  bool feasible = false;
+};
+
 struct DesignResult {
   std::vector<Design> designs;  // feasible, ranked, near-duplicates thinned
   // When nothing is feasible: the design closest to it, and in words which constraint binds
@@ -67,7 +75,8 @@ struct DesignResult {
   std::string infeasible;
   // Feasible designs no other beats in both footprint (smaller) and H's lower bound (larger).
   std::vector<Design> pareto;
-  long evaluated = 0;  // how many designs the search predicted
+  long evaluated = 0;               // how many designs the search predicted
+  std::vector<DesignPoint> points;  // every searched design within the theory's range
 };
 
 // The case of one design: the base with shell.R, shell.h and popper.net_weight replaced (and the

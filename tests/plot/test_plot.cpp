@@ -632,3 +632,27 @@ TEST_F(Plot, OutputNameWithAControlCharacterIsRefused) {
 
 }  // namespace
 }  // namespace snapjump::plot
+
+namespace snapjump::plot {
+namespace {
+
+// The design figure: every searched design, the listed ones numbered, the Jump / Snap line at
+// both ends of alpha_F; its datablocks hold the designs the command listed.
+TEST_F(Plot, DesignFigureMarksTheListedDesigns) {
+  const auto image = dir_ / "design.svg";
+  const auto r = run({"design", "--jump-height", "50mm", "--net-weight", "1N", "--count", "2",
+                      "--no-branch", "--grid", "40", "--figure", image.string()});
+  ASSERT_EQ(r.code, app::kExitOk) << r.err;
+  EXPECT_TRUE(fs::exists(image));
+  EXPECT_TRUE(contains(r.out, "figure " + image.string())) << r.out;
+  const auto script = slurp(dir_ / "design.gp");
+  for (const char* block : {"$searched", "$feasible", "$chosen", "$jump_lo", "$jump_hi"}) {
+    EXPECT_TRUE(contains(script, block)) << block;
+  }
+  const auto bad = run({"design", "--figure", (dir_ / "design.pdf").string(), "--no-branch"});
+  EXPECT_EQ(bad.code, app::kExitBadInput);
+  EXPECT_TRUE(contains(bad.err, ".png or .svg")) << bad.err;
+}
+
+}  // namespace
+}  // namespace snapjump::plot
