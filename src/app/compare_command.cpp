@@ -133,18 +133,8 @@ int CompareCommand::run(std::ostream& out, std::ostream& err) const {
 
   if (!no_figure_) {
     try {
-      plot::FigureOptions fo;
-      fo.output = figure_.empty() ? run_dir / "figures" / "compare.png" : fs::path(figure_);
-      const auto ext = fo.output.extension().string();
-      const auto f = plot::parse_format(ext.empty() ? "" : ext.substr(1));
-      if (!f) {
-        throw plot::PlotInputError(
-            fmt::format("--figure {}: name the file .png or .svg", fo.output.string()));
-      }
-      fo.format = *f;
-      if (const char* g = std::getenv("SNAPJUMP_GNUPLOT"); g != nullptr && *g != '\0') {
-        fo.gnuplot = g;
-      }
+      const auto fo = plot::options_for_image(
+          figure_.empty() ? run_dir / "figures" / "compare.png" : fs::path(figure_), "--figure");
       plot::SeriesFigureOptions so;
       so.experiment = inputs_.front();
       so.read = read;

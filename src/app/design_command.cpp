@@ -326,13 +326,7 @@ namespace {
 
 // The design figure, or a warning when gnuplot fails; returns the line that says where it is.
 std::string draw(const theory::DesignResult& res, const std::string& file, std::ostream& err) {
-  plot::FigureOptions fo;
-  fo.output = file;
-  const auto ext = fo.output.extension().string();
-  const auto f = plot::parse_format(ext.empty() ? "" : ext.substr(1));
-  if (!f) throw config::CaseError(fmt::format("--figure {}: name the file .png or .svg", file));
-  fo.format = *f;
-  if (const char* g = std::getenv("SNAPJUMP_GNUPLOT"); g != nullptr && *g != '\0') fo.gnuplot = g;
+  const auto fo = plot::options_for_image(file, "--figure");
   try {
     const auto r = plot::plot_design(res, res.designs.front().prediction.alpha.alpha_F, fo);
     return fmt::format("figure {} (script {})", r.figure.string(), r.script.string());

@@ -8,6 +8,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <system_error>
@@ -56,6 +58,19 @@ std::optional<Format> parse_format(std::string_view text) {
   if (lower == "png") return Format::Png;
   if (lower == "svg") return Format::Svg;
   return std::nullopt;
+}
+
+FigureOptions options_for_image(const std::filesystem::path& image, std::string_view flag) {
+  FigureOptions o;
+  o.output = image;
+  const auto ext = image.extension().string();
+  const auto f = parse_format(ext.empty() ? "" : ext.substr(1));
+  if (!f) {
+    throw PlotInputError(fmt::format("{} {}: name the file .png or .svg", flag, image.string()));
+  }
+  o.format = *f;
+  if (const char* g = std::getenv("SNAPJUMP_GNUPLOT"); g != nullptr && *g != '\0') o.gnuplot = g;
+  return o;
 }
 
 FigureResult figure_paths(const FigureOptions& options, const fs::path& default_path) {

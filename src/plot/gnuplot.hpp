@@ -47,6 +47,11 @@ struct FigureResult {
   std::vector<std::string> notes;  // what a user should know (data left out, fallbacks)
 };
 
+// The options for an image named `image` (.png or .svg, from its extension; gnuplot from the
+// environment's SNAPJUMP_GNUPLOT when set). Throws PlotInputError naming `flag` for another
+// extension.
+FigureOptions options_for_image(const std::filesystem::path& image, std::string_view flag);
+
 // The image and script paths for a figure: options.output if given (the script takes its stem
 // and the extension .gp), else `default_path` with the format's extension.
 FigureResult figure_paths(const FigureOptions& options, const std::filesystem::path& default_path);
