@@ -27,6 +27,7 @@
 #include "config/case.hpp"
 #include "config/text.hpp"
 #include "contact/contact.hpp"
+#include "io/atomic_file.hpp"
 #include "io/csv.hpp"
 #include "io/prediction_report.hpp"
 #include "measure/analysis.hpp"
@@ -835,6 +836,9 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
       }
       return run_simulation(c, run_opts, out, err);
     }
+  } catch (const io::WriteFailed& e) {
+    fmt::print(err, "error: {}\n", e.what());
+    return kExitWriteFailed;
   } catch (const InputError& e) {  // a case, a unit, a series, a mesh, a sweep file, a figure
     fmt::print(err, "error: {}\n", e.what());
     return kExitBadInput;

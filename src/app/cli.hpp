@@ -16,6 +16,9 @@ inline constexpr int kExitBadInput = 2;  // bad command line or case file
 // A run that ended in its preparation, before the release: the shell did not invert, or snapped
 // back before the release (summary.json's status; its hints say what to try).
 inline constexpr int kExitNotPrepared = 3;
+// A file could not be written (a full disk, a folder that cannot be written): the message names
+// it, no temporary file is left, and a run's summary says "failed: could not write FILE".
+inline constexpr int kExitWriteFailed = 4;
 // A run stopped by Ctrl-C (or the stop hook), 128 + SIGINT as a shell reports a process ended
 // by the signal; past the release it can be resumed.
 inline constexpr int kExitInterrupted = 130;

@@ -5,11 +5,25 @@
 #pragma once
 
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 #include <string_view>
 
 namespace snapjump::io {
 
-// Throws std::runtime_error naming the file when it cannot be written or renamed.
+// A file that could not be written (a full disk, a folder that cannot be written): its message
+// is "could not write PATH: why"; the command line ends with app::kExitWriteFailed.
+class WriteFailed : public std::runtime_error {
+ public:
+  WriteFailed(const std::filesystem::path& path, const std::string& why);
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// Throws WriteFailed naming the file when it cannot be written or renamed; PATH.tmp is removed
+// then, and PATH keeps what it held.
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents,
                            bool binary = false);
 

@@ -443,6 +443,8 @@ void prepare_folder(const Spec& spec) {
   const auto write_atomic = [](const fs::path& p, const std::string& text) {
     try {
       io::write_file_atomically(p, text);
+    } catch (const io::WriteFailed&) {
+      throw;  // a write failure, not a bad sweep file
     } catch (const std::runtime_error& e) {
       throw SweepError(e.what());
     }

@@ -6,9 +6,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -20,6 +22,7 @@
 
 #include "app/cli.hpp"
 #include "config/case.hpp"
+#include "io/atomic_file.hpp"
 #include "io/folder_lock.hpp"
 #include "measure/time_series.hpp"
 #include "mesh/cap_mesher.hpp"
@@ -584,6 +587,33 @@ TEST(Cli, AnErrorQuotesAShortEscapedExcerptOfTheFile) {
   EXPECT_EQ(t.out.find('\x1b'), std::string::npos);
   EXPECT_NE(t.out.find("snapjump predict: pop\\x1B[2J\\nerror: forged"), std::string::npos)
       << t.out.substr(0, 300);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Cli, AWriteThatFailsNamesTheFileAndLeavesNoTemporary) {
+  // Every write to /dev/full fails with ENOSPC, as on a full disk: the temporary file is made a
+  // link to it.
+  const auto dir =
+      std::filesystem::temp_directory_path() / fmt::format("snapjump_cli_disk_full_{}", ::getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto target = dir / "summary.json";
+  std::ofstream(target) << "old\n";
+  std::filesystem::create_symlink("/dev/full", dir / "summary.json.tmp");
+  try {
+    io::write_file_atomically(target, std::string(1 << 20, 'x'));
+    ADD_FAILURE() << "a write to a full disk succeeded";
+  } catch (const io::WriteFailed& e) {
+    EXPECT_EQ(e.path(), target);
+    EXPECT_NE(std::string(e.what()).find("could not write " + target.string()), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find(std::strerror(ENOSPC)), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(dir / "summary.json.tmp")));
+  std::ifstream in(target);
+  std::string kept;
+  std::getline(in, kept);
+  EXPECT_EQ(kept, "old");
   std::filesystem::remove_all(dir);
 }
 
