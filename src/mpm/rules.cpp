@@ -53,7 +53,7 @@ void ContainerFaceRule::apply(SparseGrid& grid, const StepContext& ctx) {
   const long nl = static_cast<long>(live.size());
   block_impulse_.assign(live.size(), 0.0);
   block_contacts_.assign(live.size(), 0);
-  const double dx = grid.dx(), dz = offset_ + body_.z, vb = body_.vz;
+  const double dx = grid.dx(), dz = dz_, vb = body_.vz;
   const double nr = face_.nr(), nz = face_.nz();
 #pragma omp parallel for schedule(static)
   for (long k = 0; k < nl; ++k) {

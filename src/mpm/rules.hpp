@@ -50,16 +50,17 @@ class ClampRule final : public GridRule {
   std::vector<double> block_impulse_;  // per live block, in their order
 };
 
-// The container's bottom face around the rim (core::ContainerFace), moving with the body: on
-// every node across its rigid part, momentum moving into the container relative to the body
-// loses its normal part (frictionless), and the body takes the reaction, added to the clamp's in
-// body.clamp_force (so this rule runs after the ClampRule). The nodes that the clamp drives move
-// with the body already and are left as they are. offset: the face's displacement from the cap's
-// frame is offset + body.z.
+// The container's bottom face around the rim (core::ContainerFace): on every grid node across
+// its rigid part, momentum moving into the container relative to the body loses its normal part
+// (frictionless), and the body takes the reaction, added to the clamp's in body.clamp_force (so
+// this rule runs after the ClampRule). The nodes that the clamp drives move with the body already
+// and are left as they are. Where the face is, the owner says before each step (set_dz: its
+// displacement from the cap's frame, the rim's), so that it follows the state alone and a resumed
+// run places it as the straight one did.
 class ContainerFaceRule final : public GridRule {
  public:
-  ContainerFaceRule(RigidBody& body, core::ContainerFace face, double offset)
-      : body_(body), face_(face), offset_(offset) {}
+  ContainerFaceRule(RigidBody& body, core::ContainerFace face) : body_(body), face_(face) {}
+  void set_dz(double dz) { dz_ = dz; }
   [[nodiscard]] std::string_view name() const override { return "container face"; }
   void apply(SparseGrid& grid, const StepContext& ctx) override;
   // How many nodes the face stopped in the last step, and its force on the shell along z [N].
@@ -69,7 +70,7 @@ class ContainerFaceRule final : public GridRule {
  private:
   RigidBody& body_;
   core::ContainerFace face_;
-  double offset_;
+  double dz_ = 0.0;
   long contacts_ = 0;
   double force_z_ = 0.0;
   std::vector<double> block_impulse_;  // per live block, in their order

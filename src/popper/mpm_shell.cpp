@@ -162,15 +162,8 @@ void MpmShell::build_stepper(mpm::Particles particles, core::RigidBody& containe
       mpm::StepperOptions{time_step_.dt, numerics_.dx, 0.5, damping});
   stepper_->add_rule(std::make_unique<mpm::ClampRule>(container));
   if (const auto face = container_face()) {
-    // The face moves with the rim: its offset from the cap's frame is the clamped particles'
-    // mean displacement, which is container.z plus what the grounding shifted.
-    const auto& X = body_->mesh().nodes;
-    const auto& x = stepper_->particles().x;
-    double shift = 0.0;
-    for (int a : body_->mesh().clamped) shift += x.z[a] - X.z[a];
-    shift /= static_cast<double>(body_->mesh().clamped.size());
-    face_ = &dynamic_cast<mpm::ContainerFaceRule&>(stepper_->add_rule(
-        std::make_unique<mpm::ContainerFaceRule>(container, *face, shift - container.z)));
+    face_ = &dynamic_cast<mpm::ContainerFaceRule&>(
+        stepper_->add_rule(std::make_unique<mpm::ContainerFaceRule>(container, *face)));
   }
   plate_ = &dynamic_cast<mpm::PlateRule&>(stepper_->add_rule(std::make_unique<mpm::PlateRule>(mu)));
   stepper_->add_rigid_body(container);
@@ -186,8 +179,19 @@ void MpmShell::set_damping(double c) {
   if (stepper_) stepper_->set_damping(c);
 }
 
+// The rim's displacement from the cap's frame: the clamped particles' mean, which the container
+// carries.
+double MpmShell::rim_dz() const {
+  const auto& X = body_->mesh().nodes;
+  const auto& x = stepper_->particles().x;
+  double dz = 0.0;
+  for (int a : body_->mesh().clamped) dz += x.z[a] - X.z[a];
+  return dz / static_cast<double>(body_->mesh().clamped.size());
+}
+
 void MpmShell::step() {
   if (stepper_) {
+    if (face_ != nullptr) face_->set_dz(rim_dz());
     stepper_->step();
   } else {
     driver_->step();

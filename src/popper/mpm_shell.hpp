@@ -73,6 +73,7 @@ class MpmShell final : public ShellModel {
   [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
   // The container's face around the rim, for the generated cap (core::ContainerFace).
   [[nodiscard]] std::optional<core::ContainerFace> container_face() const;
+  [[nodiscard]] double rim_dz() const;
   void build_stepper(mpm::Particles particles, core::RigidBody& container, double mu,
                      double damping);
 

@@ -125,7 +125,7 @@ Thrown throw_at_face(double r0) {
   s.add_rule(
       std::make_unique<mpm::ClampRule>(container));  // no clamped particles: resets the force
   auto& rule = dynamic_cast<mpm::ContainerFaceRule&>(
-      s.add_rule(std::make_unique<mpm::ContainerFaceRule>(container, face(), 0.0)));
+      s.add_rule(std::make_unique<mpm::ContainerFaceRule>(container, face())));
   s.add_rigid_body(container);
   const auto means = [&](Thrown& t, bool before) {
     const auto& q = s.particles();
@@ -143,6 +143,7 @@ Thrown throw_at_face(double r0) {
   Thrown t;
   means(t, true);
   while (s.time() < 0.012) {
+    rule.set_dz(container.z);  // the face moves with the container
     s.step();
     t.contacts = std::max(t.contacts, rule.contacts());
     t.deepest = std::max(t.deepest, deepest_gap(s.particles().x, container.z));
