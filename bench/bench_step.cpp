@@ -2,6 +2,9 @@
 // rules (clamp and plate), grid to particle, rigid body.
 //   BM_Step/<threads>/<tuned>   the default cap and the popper's grid (h/4 = 0.5 mm) at 1 and 2
 //                               threads, with the thread tuner off (0) or on (1)
+//   BM_StepWithFace/<threads>   the same with the container's face around the rim as the popper
+//                               has it (mpm::ContainerFaceRule after the clamp), untuned: its
+//                               cost is the ratio to BM_Step/<threads>/0
 //   BM_StepSize/<scale>         one thread, the cap meshed with element size sqrt(8)^-scale times
 //                               the default's (scale -1, 0, 1: particle counts a factor of about 8
 //                               apart), the same grid: the cost per particle-step should not grow
@@ -46,11 +49,18 @@ const fem::Body& cap(int scale) {
 constexpr int kRestart = 500;
 
 struct Setup {
-  explicit Setup(const fem::Body& body, bool tuned)
+  Setup(const fem::Body& body, bool tuned, bool face)
       : forces(body, 9.80665, [](double) { return 1000.0; }),
         stepper(hybrid::particles_of(body), forces, options(body, tuned)) {
     container.mass = 0.04;
     stepper.add_rule(std::make_unique<mpm::ClampRule>(container));
+    if (face) {
+      const auto c = config::default_case();
+      auto& rule = dynamic_cast<mpm::ContainerFaceRule&>(
+          stepper.add_rule(std::make_unique<mpm::ContainerFaceRule>(
+              container, core::container_face(c.shell.R, c.shell.h, c.shell.phi))));
+      rule.set_dz(c.shell.R + c.shell.h);  // where cap() put the rim
+    }
     stepper.add_rule(std::make_unique<mpm::PlateRule>(0.3));
     stepper.add_rigid_body(container);
   }
@@ -65,14 +75,14 @@ struct Setup {
   mpm::RigidBody container;
 };
 
-void run_steps(benchmark::State& state, const fem::Body& body, bool tuned) {
-  auto setup = std::make_unique<Setup>(body, tuned);
+void run_steps(benchmark::State& state, const fem::Body& body, bool tuned, bool face = false) {
+  auto setup = std::make_unique<Setup>(body, tuned, face);
   int chosen = 0;
   for (auto _ : state) {
     if (setup->stepper.steps() == kRestart) {
       state.PauseTiming();
       chosen = setup->stepper.thread_tuner().chosen();
-      setup = std::make_unique<Setup>(body, tuned);
+      setup = std::make_unique<Setup>(body, tuned, face);
       state.ResumeTiming();
     }
     setup->stepper.step();
@@ -94,6 +104,18 @@ BENCHMARK(BM_Step)
     ->Args({1, 0})
     ->Args({2, 0})
     ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
+
+void BM_StepWithFace(benchmark::State& state) {
+  const auto& body = cap(0);
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  run_steps(state, body, false, true);
+}
+BENCHMARK(BM_StepWithFace)
+    ->Arg(1)
+    ->Arg(2)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(3.0);

@@ -62,8 +62,9 @@ void ContainerFaceRule::apply(SparseGrid& grid, const StepContext& ctx) {
     double impulse_z = 0.0;
     long contacts = 0;
     for (std::size_t a = b * kBlockNodes; a < (b + 1) * kBlockNodes; ++a) {
+      if ((grid.tags[a] & kTagClamped) != 0) continue;  // the clamp drives it (one byte read)
       auto& g = grid.nodes[a];
-      if (g.m <= 0.0 || (grid.tags[a] & kTagClamped) != 0) continue;
+      if (g.m <= 0.0) continue;
       const auto c = grid.coords(a);
       const double x = dx * static_cast<double>(c[0]), y = dx * static_cast<double>(c[1]);
       const double z = dx * static_cast<double>(c[2]);
