@@ -102,6 +102,14 @@ class _CaseFile:
             os.remove(self.tmp)
 
 
+def _check_case(case, values):
+    """Every keyword a case key (InputError otherwise), and a case file that exists."""
+    for name in values:
+        _case_key(name)
+    if case is not None and not isinstance(case, dict):
+        _existing(case, "case file")
+
+
 def _case_args(case_files, values):
     args = list(case_files)
     for key, v in values.items():
@@ -315,12 +323,11 @@ def run(case=None, output=None, resolution=None, model=None, end_time=None, resu
     continue with run(resume=folder)).
     Raises FileNotFoundError for a missing case file or folder, InputError for a bad value,
     SnapjumpError when the run fails."""
-    for name in values:
-        _case_key(name)
     if resume is not None:
+        _check_case(None, values)
         _existing(resume, "run folder")
-    elif case is not None and not isinstance(case, dict):
-        _existing(case, "case file")
+    else:
+        _check_case(case, values)
     with _CaseFile(None if resume is not None else case) as files:
         if resume is not None:
             args = ["run", "--resume", os.fspath(resume)]
@@ -565,10 +572,7 @@ def design(jump_height=None, peak_force=None, margin=None, t_star_max=None, foot
     how much) or for a bad value.
     """
     import json
-    for name in values:
-        _case_key(name)
-    if case is not None and not isinstance(case, dict):
-        _existing(case, "case file")
+    _check_case(case, values)
     with _CaseFile(case) as files:
         args = ["design", *_case_args(files, values)]
         for name, v in (("--jump-height", jump_height), ("--peak-force", peak_force),
