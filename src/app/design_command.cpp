@@ -50,7 +50,7 @@ struct Row {
 
 json range_json(const theory::Range& r) { return {{"lower", r.lo}, {"upper", r.hi}}; }
 
-json row_json(const Row& r, double delta_p_j_fraction) {
+json row_json(const Row& r) {
   const auto& p = r.d.prediction;
   json j = {{"R", r.d.R},
             {"h", r.d.h},
@@ -78,7 +78,6 @@ json row_json(const Row& r, double delta_p_j_fraction) {
   } else {
     j["reverse_snap"] = {{"computed", false}, {"why", r.reverse_why}};
   }
-  (void)delta_p_j_fraction;
   return j;
 }
 
@@ -385,7 +384,7 @@ int DesignCommand::run(std::ostream& out, std::ostream& err) const {
   if (format_ == "json") {
     json j = {{"units", "SI"}, {"rank", theory::to_string(rank)}, {"evaluated", res.evaluated}};
     j["designs"] = json::array();
-    for (const auto& r : rows) j["designs"].push_back(row_json(r, 0.0));
+    for (const auto& r : rows) j["designs"].push_back(row_json(r));
     j["pareto"] = json::array();
     for (const auto& d : res.pareto) {
       j["pareto"].push_back({{"footprint", d.footprint},
