@@ -182,7 +182,7 @@ class Reader {
       const auto* table = node.as_table();
       if (table == nullptr || !known_table(name)) {
         fail(key.source(), fmt::format("unknown {} '{}'; a case file has {} and a title",
-                                       table ? "table" : "key", name, tables()));
+                                       table ? "table" : "key", text::excerpt(name), tables()));
       }
       read_table(name, *table, c);
     }
@@ -190,7 +190,9 @@ class Reader {
 
   void apply(const Override& o) {
     const auto* k = find_quantity_key(o.key);
-    if (k == nullptr) throw CaseError(fmt::format("{}: unknown case key '{}'", o.origin, o.key));
+    if (k == nullptr) {
+      throw CaseError(fmt::format("{}: unknown case key '{}'", o.origin, text::excerpt(o.key)));
+    }
     entries_[full_key(*k)] =
         Entry{convert(*k, o.text, o.origin), o.text, o.origin, bare(*k, o.text)};
   }
@@ -215,7 +217,9 @@ class Reader {
 
   // "case.toml:4: shell.h = "35 mm"" for messages about a value.
   [[nodiscard]] std::string where(const KeySpec& k) const {
-    if (const auto* e = find(k)) return fmt::format("{}: {} = {}", e->origin, full_key(k), e->text);
+    if (const auto* e = find(k)) {
+      return fmt::format("{}: {} = {}", e->origin, full_key(k), text::excerpt(e->text));
+    }
     return fmt::format("{}: {} (default {})", source_, full_key(k), k.default_text);
   }
 
@@ -258,6 +262,10 @@ class Reader {
         if (s == nullptr || s->get().empty()) {
           fail(key.source(), "shell.mesh must be the path of a gmsh .msh file, e.g. \"cap.msh\"");
         }
+        if (text::has_control_characters(s->get())) {
+          fail(key.source(),
+               fmt::format("shell.mesh '{}' holds control characters", text::excerpt(s->get())));
+        }
         std::filesystem::path p(s->get());
         if (p.is_relative() && source_ != "built-in default case") {
           p = std::filesystem::path(std::string(source_)).parent_path() / p;
@@ -277,8 +285,8 @@ class Reader {
       }
       const auto* k = find_key(table_name, name);
       if (k == nullptr) {
-        fail(key.source(), fmt::format("unknown key '{}' in [{}]; it takes {}", name, table_name,
-                                       keys_of(table_name)));
+        fail(key.source(), fmt::format("unknown key '{}' in [{}]; it takes {}", text::excerpt(name),
+                                       table_name, keys_of(table_name)));
       }
       std::string text;
       double si = 0.0;
@@ -574,7 +582,7 @@ Case parse_case(std::string_view toml_text, std::string_view source,
     doc = toml::parse(toml_text, source);
   } catch (const toml::parse_error& e) {
     throw CaseError(fmt::format("{}:{}:{}: not valid TOML: {}", source, e.source().begin.line,
-                                e.source().begin.column, e.description()));
+                                e.source().begin.column, text::library_message(e.description())));
   }
   Case c;
   c.source = std::string(source);

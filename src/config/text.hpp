@@ -33,6 +33,25 @@ inline constexpr std::size_t kMaxExcerpt = 40;
 // terminal.
 std::string excerpt(std::string_view text, std::size_t max_bytes = kMaxExcerpt);
 
+// Whether text holds a byte below 0x20 or 0x7f: a path named in a file must not, as it is quoted
+// whole in messages.
+inline bool has_control_characters(std::string_view text) {
+  return std::any_of(text.begin(), text.end(), [](char c) {
+    const auto ch = static_cast<unsigned char>(c);
+    return ch < 0x20 || ch == 0x7f;
+  });
+}
+
+// The most bytes of a message from a library that read a file (toml++, gmsh) that an error
+// passes on: such a message may quote the file.
+inline constexpr std::size_t kMaxLibraryMessage = 200;
+
+// A library's message about a file, for an error of snapjump's: escaped as text::excerpt does and
+// cut to kMaxLibraryMessage bytes.
+inline std::string library_message(std::string_view message) {
+  return excerpt(message, kMaxLibraryMessage);
+}
+
 // A title (or another line of the user's) for the terminal: control characters (below 0x20, and
 // 0x7f) as \xNN, newlines as \n; other bytes (UTF-8) kept.
 std::string printable_line(std::string_view text);

@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/text.hpp"
 #include "mesh/mesh.hpp"
 
 namespace snapjump::mesh {
@@ -36,23 +37,8 @@ constexpr std::array<MshElementType, 31> kTypes = {{
     {2, 15}, {2, 15}, {2, 21}, {1, 4}, {1, 5}, {1, 6},  {3, 20}, {3, 35}, {3, 56},
 }};
 
-// A short excerpt of the file, quoted, anything but printable ASCII escaped.
-std::string quoted(std::string_view s) {
-  constexpr std::size_t most = 24;
-  std::string out = "\"";
-  for (std::size_t i = 0; i < s.size() && i < most; ++i) {
-    const auto c = static_cast<unsigned char>(s[i]);
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c >= 0x20 && c < 0x7f) {
-      out += static_cast<char>(c);
-    } else {
-      out += fmt::format("\\x{:02x}", c);
-    }
-  }
-  return out + (s.size() > most ? "...\"" : "\"");
-}
+// A short excerpt of the file (text::excerpt), in quotes.
+std::string quoted(std::string_view s) { return fmt::format("\"{}\"", text::excerpt(s)); }
 
 bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
@@ -197,7 +183,8 @@ class Values {
     }
     return static_cast<std::int64_t>(v);
   }
-  double real(std::string_view what) {
+  // A finite number; a refusal names the node it belongs to, when given.
+  double real(std::string_view what, std::optional<std::int64_t> node = std::nullopt) {
     double v = 0;
     std::string text;
     if (binary_) {
@@ -209,7 +196,10 @@ class Values {
       v = parsed.value_or(NAN);
       text = quoted(w);
     }
-    if (!std::isfinite(v)) r_.fail(fmt::format("{} must be a finite number, not {}", what, text));
+    if (!std::isfinite(v)) {
+      r_.fail(fmt::format("{} must be a finite number, not {}{}", what, text,
+                          node ? fmt::format(" (node {})", *node) : std::string()));
+    }
     return v;
   }
 
@@ -375,13 +365,16 @@ void read_node_block(Values& v, std::uint64_t room, std::vector<TagAt>& tags) {
                     "count",
                     n, room));
   }
+  const auto first = tags.size();
   for (std::uint64_t i = 0; i < n; ++i) {
     const auto tag = v.tag("a node tag", kMaxNodeTag);
     tags.emplace_back(tag, v.reader().mark());
   }
-  const auto per_node = 3 + (parametric ? dim : 0);
-  for (std::uint64_t i = 0; i < n * static_cast<std::uint64_t>(per_node); ++i) {
-    (void)v.real("a node coordinate");
+  // The block's tags come first, then each node's coordinates in the same order.
+  const auto per_node = static_cast<std::uint64_t>(3 + (parametric ? dim : 0));
+  for (std::uint64_t i = 0; i < n; ++i) {
+    for (std::uint64_t k = 0; k < per_node; ++k)
+      (void)v.real("a node coordinate", tags[first + i].first);
   }
 }
 

@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <set>
 #include <unordered_map>
 
+#include "config/text.hpp"
 #include "mesh/gmsh_model.hpp"
 #include "mesh/msh_check.hpp"
 
@@ -35,16 +37,20 @@ std::pair<int, int> find_group(const std::string& wanted) {
   return {-1, -1};
 }
 
+// The physical groups for a message: each name a short excerpt, the first few groups.
 std::string group_names() {
+  constexpr std::size_t kMostShown = 8;
   gmsh::vectorpair groups;
   gmsh::model::getPhysicalGroups(groups);
   std::string out;
-  for (const auto& [dim, tag] : groups) {
+  for (std::size_t k = 0; k < groups.size() && k < kMostShown; ++k) {
+    const auto [dim, tag] = groups[k];
     std::string name;
     gmsh::model::getPhysicalName(dim, tag, name);
     out += fmt::format("{}'{}' (dim {})", out.empty() ? "" : ", ",
-                       name.empty() ? "<unnamed>" : name, dim);
+                       name.empty() ? "<unnamed>" : text::excerpt(name), dim);
   }
+  if (groups.size() > kMostShown) out += fmt::format(" and {} more", groups.size() - kMostShown);
   return out.empty() ? "none" : out;
 }
 
@@ -101,7 +107,10 @@ ModelTets tets_of_current_model(const std::function<MeshError(const std::string&
 
 namespace {
 
-Mesh read_msh_unguarded(const std::filesystem::path& path) {
+using Fail = std::function<MeshError(const std::string&)>;
+
+// Refuses what is not a file, and what gmsh should not see (the structure check).
+void check_before_gmsh(const std::filesystem::path& path) {
   if (!std::filesystem::is_regular_file(path)) {
     throw MeshError(fmt::format("{}: no such mesh file", path.string()));
   }
@@ -110,31 +119,38 @@ Mesh read_msh_unguarded(const std::filesystem::path& path) {
   // parser trusts the file: a damaged one can crash it. Only a file that passes the structure
   // check (an MSH 4.1 file that starts with $MeshFormat, msh_check.hpp) reaches gmsh.
   check_msh_file(path);
-  GmshSession session;
+}
+
+// Opens the file in gmsh's current session.
+void open_in_gmsh(const std::filesystem::path& path) {
   // gmsh keeps its last error across sessions: only a new one is this file's.
   std::string before, error;
   gmsh::logger::getLastError(before);
   gmsh::open(path.string());
   gmsh::logger::getLastError(error);
-  if (!error.empty() && error != before)
-    throw MeshError(fmt::format("{}: gmsh cannot read it: {}", path.string(), error));
-  const auto fail = [&](const std::string& what) {
-    return MeshError(fmt::format("{}: {}", path.string(), what));
-  };
+  if (!error.empty() && error != before) {
+    throw MeshError(
+        fmt::format("{}: gmsh cannot read it: {}", path.string(), text::library_message(error)));
+  }
+}
 
-  auto model = tets_of_current_model(fail);
-  Mesh m = std::move(model.mesh);
-  m.description = fmt::format("gmsh mesh {}", path.string());
-  const auto& index = model.index;
-  const auto local = [&](std::size_t tag, const char* what) {
-    const auto it = index.find(tag);
-    if (it == index.end()) {
-      throw fail(fmt::format("{} node {} belongs to no tetrahedron", what, tag));
+// The mesh's nodes of the model's physical groups.
+class GroupNodes {
+ public:
+  GroupNodes(const std::unordered_map<std::size_t, int>& index, Fail fail)
+      : index_(index), fail_(std::move(fail)) {}
+
+  // The mesh node of gmsh's node `tag`, which must belong to a tetrahedron.
+  [[nodiscard]] int local(std::size_t tag, const char* what) const {
+    const auto it = index_.find(tag);
+    if (it == index_.end()) {
+      throw fail_(fmt::format("{} node {} belongs to no tetrahedron", what, tag));
     }
     return it->second;
-  };
-  // Node sets from the physical groups.
-  const auto nodes_of = [&](std::pair<int, int> group, const char* what) {
+  }
+
+  // The group's nodes, sorted, each once.
+  [[nodiscard]] std::vector<int> of(std::pair<int, int> group, const char* what) const {
     std::vector<std::size_t> node_tags;
     std::vector<double> coords;
     gmsh::model::mesh::getNodesForPhysicalGroup(group.first, group.second, node_tags, coords);
@@ -143,7 +159,17 @@ Mesh read_msh_unguarded(const std::filesystem::path& path) {
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
     return out;
-  };
+  }
+
+  [[nodiscard]] const Fail& fail() const { return fail_; }
+
+ private:
+  const std::unordered_map<std::size_t, int>& index_;
+  Fail fail_;
+};
+
+// The inner surface's and the clamped faces' groups, which a shell mesh must have.
+std::pair<std::pair<int, int>, std::pair<int, int>> required_groups(const Fail& fail) {
   const auto inner = find_group("inner");
   if (inner.first != 2) {
     throw fail(
@@ -158,9 +184,39 @@ Mesh read_msh_unguarded(const std::filesystem::path& path) {
                     "container); its groups: {}",
                     group_names()));
   }
-  m.clamped = nodes_of(clamped, "clamped");
+  return {inner, clamped};
+}
 
-  // Inner faces, oriented into the tetrahedron they bound (out of the cavity).
+// The face turned, if need be, to point into tetrahedron `owner` (out of the cavity).
+void orient_into(const Mesh& m, int owner, std::array<int, 6>& face) {
+  double c[3] = {}, n[3], d[3][3];
+  for (int a = 0; a < 4; ++a) {
+    const int i = m.tets[owner][a];
+    c[0] += 0.25 * m.nodes.x[i];
+    c[1] += 0.25 * m.nodes.y[i];
+    c[2] += 0.25 * m.nodes.z[i];
+  }
+  for (int a = 0; a < 3; ++a) {
+    d[a][0] = m.nodes.x[face[a]];
+    d[a][1] = m.nodes.y[face[a]];
+    d[a][2] = m.nodes.z[face[a]];
+  }
+  const double u[3] = {d[1][0] - d[0][0], d[1][1] - d[0][1], d[1][2] - d[0][2]};
+  const double v[3] = {d[2][0] - d[0][0], d[2][1] - d[0][1], d[2][2] - d[0][2]};
+  n[0] = u[1] * v[2] - u[2] * v[1];
+  n[1] = u[2] * v[0] - u[0] * v[2];
+  n[2] = u[0] * v[1] - u[1] * v[0];
+  const double into = n[0] * (c[0] - d[0][0]) + n[1] * (c[1] - d[0][1]) + n[2] * (c[2] - d[0][2]);
+  if (into < 0) {  // flip: swap corners 1 and 2 and edge nodes (0,1) <-> (0,2)
+    std::swap(face[1], face[2]);
+    std::swap(face[3], face[5]);
+  }
+}
+
+// The inner group's 6-node triangles, oriented into the tetrahedron they bound.
+std::vector<std::array<int, 6>> inner_faces(const Mesh& m, std::pair<int, int> inner,
+                                            const GroupNodes& nodes) {
+  const auto& fail = nodes.fail();
   std::map<std::array<int, 3>, int> face_owner;
   constexpr int corner_faces[4][3] = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
   for (std::size_t e = 0; e < m.tets.size(); ++e) {
@@ -170,6 +226,7 @@ Mesh read_msh_unguarded(const std::filesystem::path& path) {
       face_owner[key] = static_cast<int>(e);
     }
   }
+  std::vector<std::array<int, 6>> out;
   std::vector<int> entities;
   gmsh::model::getEntitiesForPhysicalGroup(inner.first, inner.second, entities);
   for (int entity : entities) {
@@ -188,75 +245,75 @@ Mesh read_msh_unguarded(const std::filesystem::path& path) {
       }
       for (std::size_t f = 0; f < ftags[k].size(); ++f) {
         std::array<int, 6> face{};
-        for (int a = 0; a < 6; ++a) face[a] = local(fnodes[k][6 * f + a], "inner-face");
+        for (int a = 0; a < 6; ++a) face[a] = nodes.local(fnodes[k][6 * f + a], "inner-face");
         std::array<int, 3> key{face[0], face[1], face[2]};
         std::sort(key.begin(), key.end());
         const auto owner = face_owner.find(key);
         if (owner == face_owner.end()) {
           throw fail(fmt::format("inner face {} is not a face of any tetrahedron", ftags[k][f]));
         }
-        double c[3] = {}, n[3], d[3][3];
-        for (int a = 0; a < 4; ++a) {
-          const int i = m.tets[owner->second][a];
-          c[0] += 0.25 * m.nodes.x[i];
-          c[1] += 0.25 * m.nodes.y[i];
-          c[2] += 0.25 * m.nodes.z[i];
-        }
-        for (int a = 0; a < 3; ++a) {
-          d[a][0] = m.nodes.x[face[a]];
-          d[a][1] = m.nodes.y[face[a]];
-          d[a][2] = m.nodes.z[face[a]];
-        }
-        const double u[3] = {d[1][0] - d[0][0], d[1][1] - d[0][1], d[1][2] - d[0][2]};
-        const double v[3] = {d[2][0] - d[0][0], d[2][1] - d[0][1], d[2][2] - d[0][2]};
-        n[0] = u[1] * v[2] - u[2] * v[1];
-        n[1] = u[2] * v[0] - u[0] * v[2];
-        n[2] = u[0] * v[1] - u[1] * v[0];
-        const double into =
-            n[0] * (c[0] - d[0][0]) + n[1] * (c[1] - d[0][1]) + n[2] * (c[2] - d[0][2]);
-        if (into < 0) {  // flip: swap corners 1 and 2 and edge nodes (0,1) <-> (0,2)
-          std::swap(face[1], face[2]);
-          std::swap(face[3], face[5]);
-        }
-        m.inner_faces.push_back(face);
+        orient_into(m, owner->second, face);
+        out.push_back(face);
       }
     }
   }
-  if (m.inner_faces.empty()) throw fail("the 'inner' group has no faces");
+  if (out.empty()) throw fail("the 'inner' group has no faces");
+  return out;
+}
 
-  // Outer surface and apex.
-  const auto outer = find_group("outer");
-  if (outer.first >= 0) {
-    m.outer = nodes_of(outer, "outer");
-  } else {
-    std::set<std::array<int, 3>> inner_keys;
-    for (const auto& f : m.inner_faces) {
-      std::array<int, 3> key{f[0], f[1], f[2]};
-      std::sort(key.begin(), key.end());
-      inner_keys.insert(key);
-    }
-    std::vector<char> clamped_flag(m.nodes.size(), 0);
-    for (int a : m.clamped) clamped_flag[a] = 1;
-    std::set<int> out;
-    for (const auto& f : boundary_faces(m)) {
-      std::array<int, 3> key{f[0], f[1], f[2]};
-      std::sort(key.begin(), key.end());
-      const bool all_clamped = clamped_flag[f[0]] && clamped_flag[f[1]] && clamped_flag[f[2]];
-      if (inner_keys.count(key) || all_clamped) continue;
-      out.insert(f.begin(), f.end());
-    }
-    m.outer.assign(out.begin(), out.end());
+// Without an 'outer' group: the nodes of the boundary faces that are neither inner nor clamped.
+std::vector<int> outer_from_boundary(const Mesh& m) {
+  std::set<std::array<int, 3>> inner_keys;
+  for (const auto& f : m.inner_faces) {
+    std::array<int, 3> key{f[0], f[1], f[2]};
+    std::sort(key.begin(), key.end());
+    inner_keys.insert(key);
   }
+  std::vector<char> clamped_flag(m.nodes.size(), 0);
+  for (int a : m.clamped) clamped_flag[a] = 1;
+  std::set<int> out;
+  for (const auto& f : boundary_faces(m)) {
+    std::array<int, 3> key{f[0], f[1], f[2]};
+    std::sort(key.begin(), key.end());
+    const bool all_clamped = clamped_flag[f[0]] && clamped_flag[f[1]] && clamped_flag[f[2]];
+    if (inner_keys.count(key) || all_clamped) continue;
+    out.insert(f.begin(), f.end());
+  }
+  return {out.begin(), out.end()};
+}
+
+// The 'apex' group's one node, or else the lowest outer node.
+int apex_of(const Mesh& m, const GroupNodes& nodes) {
   const auto apex = find_group("apex");
   if (apex.first >= 0) {
-    const auto a = nodes_of(apex, "apex");
-    if (a.size() != 1) throw fail("the 'apex' group must hold exactly one node");
-    m.apex = a.front();
-  } else {
-    for (int a : m.outer) {
-      if (m.apex < 0 || m.nodes.z[a] < m.nodes.z[m.apex]) m.apex = a;
-    }
+    const auto a = nodes.of(apex, "apex");
+    if (a.size() != 1) throw nodes.fail()("the 'apex' group must hold exactly one node");
+    return a.front();
   }
+  int lowest = -1;
+  for (int a : m.outer) {
+    if (lowest < 0 || m.nodes.z[a] < m.nodes.z[lowest]) lowest = a;
+  }
+  return lowest;
+}
+
+Mesh read_msh_unguarded(const std::filesystem::path& path) {
+  check_before_gmsh(path);
+  GmshSession session;
+  open_in_gmsh(path);
+  const Fail fail = [&](const std::string& what) {
+    return MeshError(fmt::format("{}: {}", path.string(), what));
+  };
+  auto model = tets_of_current_model(fail);
+  Mesh m = std::move(model.mesh);
+  m.description = fmt::format("gmsh mesh {}", path.string());
+  const GroupNodes nodes(model.index, fail);
+  const auto [inner, clamped] = required_groups(fail);
+  m.clamped = nodes.of(clamped, "clamped");
+  m.inner_faces = inner_faces(m, inner, nodes);
+  const auto outer = find_group("outer");
+  m.outer = outer.first >= 0 ? nodes.of(outer, "outer") : outer_from_boundary(m);
+  m.apex = apex_of(m, nodes);
   try {
     check_mesh(m);
     check_shell_sets(m);
@@ -277,9 +334,11 @@ Mesh read_msh(const std::filesystem::path& path) {
   } catch (const MeshError&) {
     throw;
   } catch (const std::string& e) {
-    throw MeshError(fmt::format("{}: gmsh cannot read it: {}", path.string(), e));
+    throw MeshError(
+        fmt::format("{}: gmsh cannot read it: {}", path.string(), text::library_message(e)));
   } catch (const std::exception& e) {
-    throw MeshError(fmt::format("{}: cannot be read as a shell mesh: {}", path.string(), e.what()));
+    throw MeshError(fmt::format("{}: cannot be read as a shell mesh: {}", path.string(),
+                                text::library_message(e.what())));
   } catch (int code) {
     throw MeshError(fmt::format("{}: gmsh cannot read it (error {})", path.string(), code));
   }

@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "config/files.hpp"
+#include "config/text.hpp"
 #include "plot/gnuplot.hpp"
 
 namespace snapjump::plot {
@@ -66,7 +67,15 @@ std::vector<Frame> read_pvd(const fs::path& path) {
     }
     const auto time = to_number(*t);
     if (!time) {
-      throw PlotInputError(fmt::format("{}: timestep \"{}\" is not a number", path.string(), *t));
+      throw PlotInputError(
+          fmt::format("{}: timestep \"{}\" is not a number", path.string(), text::excerpt(*t)));
+    }
+    // The file is named in messages about the frame.
+    if (file->empty() || text::has_control_characters(*file)) {
+      throw PlotInputError(
+          fmt::format("{}: a <DataSet> file \"{}\" that is empty or holds control "
+                      "characters",
+                      path.string(), text::excerpt(*file)));
     }
     frames.push_back({*time, fs::path(*file)});
     pos = end;
@@ -112,7 +121,7 @@ std::vector<std::array<double, 3>> read_vtu_points(const fs::path& path) {
   if (array_end == std::string::npos) throw fail("an unterminated <DataArray>");
   const std::string_view tag(text.data() + array, array_end - array);
   if (const auto format = attribute(tag, "format"); format && *format != "ascii") {
-    throw fail(fmt::format("the points are in format \"{}\"", *format));
+    throw fail(fmt::format("the points are in format \"{}\"", text::excerpt(*format)));
   }
   if (const auto comps = attribute(tag, "NumberOfComponents"); comps && *comps != "3") {
     throw fail("the points do not have 3 components");

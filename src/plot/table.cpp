@@ -111,7 +111,7 @@ std::optional<double> Table::number(std::size_t row, std::string_view name) cons
   const auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
   if (ec != std::errc() || ptr != s.data() + s.size()) {
     throw PlotInputError(fmt::format("{}:{}: column '{}': '{}' is not a number", source_,
-                                     lines_.at(row), name, cell));
+                                     lines_.at(row), name, text::excerpt(cell)));
   }
   if (!std::isfinite(v)) return std::nullopt;
   return v;

@@ -54,7 +54,7 @@ void check_key(const fs::path& file, const toml::source_region& r, const std::st
     return;
   }
   throw SweepError(fmt::format("{}: unknown case key '{}'; a sweep may set or vary:{}", at(file, r),
-                               key, known_keys()));
+                               text::excerpt(key), known_keys()));
 }
 
 // A scalar TOML value as case text: strings as written, numbers as bare (SI) numbers.
@@ -124,7 +124,7 @@ std::vector<Setting> values_of(const fs::path& file, const std::string& key, con
       const auto name = rk.str();
       if (name != "from" && name != "to" && name != "count" && name != "scale") {
         throw SweepError(fmt::format("{}: {}: a range has from, to, count and scale, not '{}'",
-                                     origin, key, name));
+                                     origin, key, text::excerpt(name)));
       }
     }
     if (from == nullptr || to == nullptr || !count || *count < 2) {
@@ -223,87 +223,116 @@ config::Case build_case(const Spec& spec, const RunPlan& run, const units::UnitP
 
 }  // namespace
 
-Spec parse_spec(std::string_view toml_text, const fs::path& file) {
-  toml::table doc;
+namespace {
+
+// The values of a sweep file's [vary] and [zip] tables while it is read: per key, its values.
+struct Lists {
+  std::vector<std::vector<Setting>> vary, zip;
+};
+
+toml::table parse_toml(std::string_view toml_text, const fs::path& file) {
   try {
-    doc = toml::parse(toml_text, file.string());
+    return toml::parse(toml_text, file.string());
   } catch (const toml::parse_error& e) {
-    throw SweepError(
-        fmt::format("{}:{}: {}", file.string(), e.source().begin.line, e.description()));
+    throw SweepError(fmt::format("{}:{}: {}", file.string(), e.source().begin.line,
+                                 text::library_message(e.description())));
   }
-  const units::UnitParser parser;
-  Spec spec;
-  spec.file = file;
+}
+
+// A path the sweep file names (base, output), as written; it must be a string.
+const std::string& path_text(const toml::node& node, const std::string& origin,
+                             std::string_view what) {
+  const auto* s = node.as_string();
+  if (s == nullptr) throw SweepError(fmt::format("{}: {}", origin, what));
+  if (text::has_control_characters(s->get())) {
+    throw SweepError(
+        fmt::format("{}: the path '{}' holds control characters", origin, text::excerpt(s->get())));
+  }
+  return s->get();
+}
+
+// One of the tables [set], [vary] and [zip] (`name`), into the spec's fixed settings or the lists.
+void read_settings(const fs::path& file, const std::string& name, const toml::table& t,
+                   const units::UnitParser& parser, Spec& spec, Lists& lists) {
+  for_each_leaf(
+      t, [&](const std::string& key, const toml::node& n, const toml::source_region& where) {
+        check_key(file, where, key);
+        for (const auto& v : spec.varied_keys) {
+          if (v == key)
+            throw SweepError(fmt::format("{}: {} is varied twice", at(file, where), key));
+        }
+        if (name == "set") {
+          const auto text = scalar_text(n);
+          if (!text) {
+            throw SweepError(
+                fmt::format("{}: [set] {} takes one value (a string with its unit or a number)",
+                            at(file, where), key));
+          }
+          spec.fixed.push_back({key, *text, at(file, where)});
+        } else {
+          auto values = values_of(file, key, n, where, parser);
+          (name == "vary" ? lists.vary : lists.zip).push_back(std::move(values));
+        }
+      });
+}
+
+// The sweep file's top-level keys: title, base, output and the tables of settings.
+void read_document(const toml::table& doc, const fs::path& file, const units::UnitParser& parser,
+                   Spec& spec, Lists& lists) {
   const fs::path folder = file.parent_path();
-  std::vector<std::vector<Setting>> vary;  // per key: its values
-  std::vector<std::vector<Setting>> zip;
   for (auto&& [k, node] : doc) {
     const std::string name(k.str());
     const std::string origin = at(file, k.source());
     if (name == "title") {
       spec.title = text::capped_title(node.value_or(std::string()));
     } else if (name == "base") {
-      const auto* s = node.as_string();
-      if (s == nullptr) throw SweepError(fmt::format("{}: base must be a path (a string)", origin));
-      spec.base = fs::absolute(folder / s->get());
+      spec.base = fs::absolute(folder / path_text(node, origin, "base must be a path (a string)"));
       if (!fs::is_regular_file(*spec.base)) {
         throw SweepError(
             fmt::format("{}: base case file {} does not exist", origin, spec.base->string()));
       }
     } else if (name == "output") {
-      const auto* s = node.as_string();
-      if (s == nullptr) throw SweepError(fmt::format("{}: output must be a path", origin));
-      spec.output = folder / s->get();
+      spec.output = folder / path_text(node, origin, "output must be a path");
     } else if (name == "set" || name == "vary" || name == "zip") {
       const auto* t = node.as_table();
       if (t == nullptr) throw SweepError(fmt::format("{}: [{}] must be a table", origin, name));
-      for_each_leaf(
-          *t, [&](const std::string& key, const toml::node& n, const toml::source_region& where) {
-            check_key(file, where, key);
-            for (const auto& v : spec.varied_keys) {
-              if (v == key) {
-                throw SweepError(fmt::format("{}: {} is varied twice", at(file, where), key));
-              }
-            }
-            if (name == "set") {
-              const auto text = scalar_text(n);
-              if (!text) {
-                throw SweepError(
-                    fmt::format("{}: [set] {} takes one value (a string with its unit or a number)",
-                                at(file, where), key));
-              }
-              spec.fixed.push_back({key, *text, at(file, where)});
-            } else {
-              auto values = values_of(file, key, n, where, parser);
-              (name == "vary" ? vary : zip).push_back(std::move(values));
-            }
-          });
+      read_settings(file, name, *t, parser, spec, lists);
     } else {
       throw SweepError(fmt::format(
           "{}: unknown key '{}'; a sweep file has title, base, output, [set], [vary] and [zip]",
-          origin, name));
+          origin, text::excerpt(name)));
     }
   }
-  if (vary.empty() && zip.empty()) {
+}
+
+// The varied keys ([zip] first, then [vary]), once the lists are checked against each other and
+// against [set].
+void take_varied_keys(const fs::path& file, const Lists& lists, Spec& spec) {
+  if (lists.vary.empty() && lists.zip.empty()) {
     throw SweepError(
         fmt::format("{}: nothing to vary: add a [vary] or [zip] table", file.string()));
   }
-  for (const auto& z : zip) {
-    if (z.size() != zip.front().size()) {
+  for (const auto& z : lists.zip) {
+    if (z.size() != lists.zip.front().size()) {
       throw SweepError(fmt::format("{}: [zip] lists differ in length ({} has {}, {} has {})",
-                                   file.string(), zip.front().front().key, zip.front().size(),
-                                   z.front().key, z.size()));
+                                   file.string(), lists.zip.front().front().key,
+                                   lists.zip.front().size(), z.front().key, z.size()));
     }
   }
-  for (const auto& z : zip) spec.varied_keys.push_back(z.front().key);
-  for (const auto& v : vary) spec.varied_keys.push_back(v.front().key);
+  for (const auto& z : lists.zip) spec.varied_keys.push_back(z.front().key);
+  for (const auto& v : lists.vary) spec.varied_keys.push_back(v.front().key);
   for (const auto& f : spec.fixed) {
     for (const auto& v : spec.varied_keys) {
       if (v == f.key) throw SweepError(fmt::format("{}: {} is both set and varied", f.origin, v));
     }
   }
+}
 
-  // The product: zip position outermost, then the [vary] keys, the last one fastest.
+// The runs: the zip position outermost, then the [vary] keys, the last one fastest; held to
+// kMaxRuns before any is made.
+void expand_runs(const fs::path& file, const Lists& lists, Spec& spec) {
+  const auto& vary = lists.vary;
+  const auto& zip = lists.zip;
   const std::size_t nzip = zip.empty() ? 1 : zip.front().size();
   std::size_t nvary = 1;
   for (const auto& v : vary) {
@@ -333,6 +362,19 @@ Spec parse_spec(std::string_view toml_text, const fs::path& file) {
       spec.runs.push_back(std::move(r));
     }
   }
+}
+
+}  // namespace
+
+Spec parse_spec(std::string_view toml_text, const fs::path& file) {
+  const toml::table doc = parse_toml(toml_text, file);
+  const units::UnitParser parser;
+  Spec spec;
+  spec.file = file;
+  Lists lists;
+  read_document(doc, file, parser, spec, lists);
+  take_varied_keys(file, lists, spec);
+  expand_runs(file, lists, spec);
   if (spec.output.empty())
     spec.output = fs::path("runs") / fmt::format("sweep-{}", file.stem().string());
 

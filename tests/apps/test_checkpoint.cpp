@@ -13,6 +13,7 @@
 
 #include "app/checkpoint.hpp"
 #include "io/atomic_file.hpp"
+#include "support/hostile_text.hpp"
 
 namespace snapjump::app {
 namespace {
@@ -116,6 +117,22 @@ TEST(Checkpoint, WithoutTheTrailerItIsRefused) {
   const auto cut = bytes.substr(0, bytes.size() - trailer);
   EXPECT_NE(error_of(cut).find("without its checksum"), std::string::npos) << error_of(cut);
   EXPECT_EQ(error_of(bytes), "");
+}
+
+// A checkpoint is binary: its errors quote none of it, whether the text has no trailer or is
+// sealed with a valid one.
+TEST(Checkpoint, AnErrorQuotesNoneOfTheFile) {
+  const auto text = test_support::hostile_text();
+  std::string sealed = text;
+  const std::uint64_t sum = fnv1a64(text);
+  sealed.append("snapjump-checksum-1", sizeof("snapjump-checksum-1"));
+  sealed.append(reinterpret_cast<const char*>(&sum), sizeof sum);
+  for (const auto& bytes : {text, sealed}) {
+    const auto e = error_of(bytes);
+    EXPECT_NE(e.find("checkpoint.bin: "), std::string::npos) << e;
+    EXPECT_TRUE(test_support::quotes_only_an_excerpt(e, false));
+    EXPECT_EQ(e.find(test_support::kHostileLetter), std::string::npos) << e;
+  }
 }
 
 TEST(AtomicFile, ReplacesWholeOrNotAtAll) {

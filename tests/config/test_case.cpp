@@ -9,6 +9,7 @@
 
 #include "config/case.hpp"
 #include "config/plausibility.hpp"
+#include "support/hostile_text.hpp"
 
 namespace snapjump::config {
 namespace {
@@ -166,6 +167,33 @@ TEST(CaseFile, ErrorsNameKeyAndLine) {
   // TOML syntax error
   expect_error(replace(kMinimal, "R = \"30 mm\"", "R = \"30 mm"),
                {"case.toml:2", "not valid TOML"});
+}
+
+// The message of the CaseError that parsing `text` throws.
+std::string error_of(const std::string& text) {
+  try {
+    (void)parse_case(text, "case.toml");
+  } catch (const CaseError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected an error for:\n" << text;
+  return {};
+}
+
+TEST(CaseFile, AnErrorQuotesAShortEscapedExcerptOfTheFile) {
+  using test_support::quotes_only_an_excerpt;
+  const auto quoted = test_support::hostile_toml_quoted();
+  const auto hostile = test_support::hostile_text();
+  // An unknown table or key, at the top and in a table.
+  EXPECT_TRUE(quotes_only_an_excerpt(error_of(kMinimal + quoted + " = 1\n")));
+  EXPECT_TRUE(quotes_only_an_excerpt(error_of(replace(kMinimal, "h = ", quoted + " = "))));
+  // A value and its unit, a mesh path.
+  EXPECT_TRUE(quotes_only_an_excerpt(error_of(replace(kMinimal, "\"30 mm\"", quoted))));
+  EXPECT_TRUE(quotes_only_an_excerpt(
+      error_of(replace(kMinimal, "h = \"2 mm\"", "h = \"2 mm\"\nmesh = " + quoted))));
+  // Text that is not TOML: toml++'s message is passed on escaped.
+  const auto raw = error_of(replace(kMinimal, "h = \"2 mm\"", "h = " + hostile));
+  EXPECT_TRUE(quotes_only_an_excerpt(raw, false)) << raw;
 }
 
 TEST(CaseFile, MissingRequiredValues) {

@@ -24,6 +24,7 @@
 #include "mesh/gmsh_session.hpp"
 #include "mesh/msh_check.hpp"
 #include "mesh/msh_reader.hpp"
+#include "support/hostile_text.hpp"
 
 namespace snapjump::mesh {
 namespace {
@@ -552,6 +553,53 @@ TEST(MshCheck, OtherDamageIsNamed) {
   lines[k] = fmt::format("{} {} 99 {}", w[0], w[1], w[3]);
   expect_refused(joined(lines), {fmt::format("line {}", k + 1), "element type 99"});
   expect_refused(cap_msh() + "$Periodic\n0\n$EndPeriodic\n", {"$Periodic"});
+}
+
+// `text` with its first `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? text : text.replace(at, from.size(), to);
+}
+
+TEST(MshCheck, ANaNCoordinateIsRefusedNamingTheFileAndTheNode) {
+  // Node 4 of the one-tetrahedron file is at (0, 0, 1); the reader would otherwise build a body
+  // whose gas volume comes out NaN ("reference gas volume must be positive").
+  const auto good = one_tet_msh(true, true);
+  const auto lines = lines_of(good);
+  const auto line = std::find(lines.begin(), lines.end(), "0 0 1") - lines.begin() + 1;
+  expect_refused(replaced(good, "\n0 0 1\n", "\n0 nan 1\n"),
+                 {fmt::format("line {} ($Nodes)", line),
+                  "a node coordinate must be a finite number, not \"nan\"", "(node 4)"});
+  expect_refused(replaced(good, "\n0 0 1\n", "\n0 0 -inf\n"),
+                 {fmt::format("line {}", line), "(node 4)"});
+}
+
+TEST(MshCheck, AnErrorQuotesAShortEscapedExcerptOfTheFile) {
+  using test_support::quotes_only_an_excerpt;
+  const auto message = [](const std::string& bytes) {
+    const auto path = temp_file("check-hostile.msh");
+    std::ofstream(path, std::ios::binary) << bytes;
+    try {
+      (void)read_msh(path);
+    } catch (const MeshError& e) {
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "read a damaged file";
+    return std::string();
+  };
+  const auto good = one_tet_msh(true, true);
+  const auto word = test_support::hostile_word();
+  const auto hostile = test_support::hostile_text();
+  // A coordinate, a section header, a closing line (the structure check).
+  EXPECT_TRUE(quotes_only_an_excerpt(message(replaced(good, "\n0 0 1\n", "\n0 0 " + word + "\n"))));
+  EXPECT_TRUE(quotes_only_an_excerpt(message(good + hostile + "\n")));
+  EXPECT_TRUE(quotes_only_an_excerpt(message(replaced(good, "$EndNodes", "$EndNodes" + hostile))));
+  // A physical name is the file's text too, when the reader lists the groups it found.
+  const auto name = word.substr(0, 104) + "\x1b[31m";
+  const auto listed = message(replaced(good, "\"inner\"", "\"" + name + "\""));
+  EXPECT_NE(listed.find("no surface physical group named 'inner'"), std::string::npos) << listed;
+  EXPECT_TRUE(quotes_only_an_excerpt(listed));
 }
 
 // A mesh gmsh wrote in binary, for the binary paths of the check.

@@ -20,6 +20,7 @@
 #include "plot/snapshots.hpp"
 #include "plot/table.hpp"
 #include "support/cli_runner.hpp"
+#include "support/hostile_text.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::plot {
@@ -558,6 +559,41 @@ TEST(PlotSnapshots, DamagedSnapshotsAreRefusedNotReadPastTheirEnd) {
   EXPECT_NE(refuse("<Piece NumberOfPoints=\"50\">" + grid).find("fewer coordinates"),
             std::string::npos);
   EXPECT_EQ(refuse("<Piece NumberOfPoints=\"1\">" + grid), "");  // the good one
+}
+
+TEST(PlotInputs, AnErrorQuotesAShortEscapedExcerptOfTheFile) {
+  using test_support::quotes_only_an_excerpt;
+  const auto bad = test_support::hostile_text();
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("snapjump_plot_hostile_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const auto error = [&](const std::string& name, const std::string& text, auto read) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    try {
+      read(dir / name);
+    } catch (const PlotInputError& e) {
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << name << " was read";
+    return std::string();
+  };
+  // A table's cell where a number is read (a quoted cell may hold a line break).
+  EXPECT_TRUE(
+      quotes_only_an_excerpt(error("t.csv", "t,F\n0,\"" + bad + "\"\n", [](const fs::path& p) {
+        (void)Table::read_csv_file(p).numbers("F");
+      })));
+  // A collection's timestep and file, a snapshot's format.
+  const auto pvd = [](const fs::path& p) { (void)read_pvd(p); };
+  EXPECT_TRUE(quotes_only_an_excerpt(
+      error("a.pvd", "<DataSet timestep=\"" + bad + "\" file=\"f.vtu\"/>", pvd)));
+  EXPECT_TRUE(quotes_only_an_excerpt(
+      error("b.pvd", "<DataSet timestep=\"0\" file=\"" + bad + "\"/>", pvd)));
+  EXPECT_TRUE(
+      quotes_only_an_excerpt(error("f.vtu",
+                                   "<Piece NumberOfPoints=\"1\">\n<Points>\n<DataArray format=\"" +
+                                       bad + "\">\n0 0 0\n</DataArray>",
+                                   [](const fs::path& p) { (void)read_vtu_points(p); })));
+  std::filesystem::remove_all(dir);
 }
 
 TEST(PlotScript, QuotedTextHasNoControlCharacters) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "config/case.hpp"
+#include "support/hostile_text.hpp"
 #include "sweep/executor.hpp"
 #include "sweep/sweep.hpp"
 
@@ -232,6 +233,26 @@ TEST(SweepSpec, MistakesNameTheKeyAndTheLine) {
             std::string::npos);
   EXPECT_NE(error_of([] { (void)parse_spec("[vary\n", "s.toml"); }).find("s.toml:1"),
             std::string::npos);
+}
+
+TEST(SweepSpec, AnErrorQuotesAShortEscapedExcerptOfTheFile) {
+  using test_support::quotes_only_an_excerpt;
+  const auto quoted = test_support::hostile_toml_quoted();
+  const auto hostile = test_support::hostile_text();
+  const auto error = [](const std::string& text) {
+    return error_of([&] { (void)parse_spec(text, "s.toml"); });
+  };
+  const std::string vary = "[vary]\nfriction.mu = [0]\n";
+  EXPECT_TRUE(quotes_only_an_excerpt(error(quoted + " = 1\n" + vary)));          // an unknown key
+  EXPECT_TRUE(quotes_only_an_excerpt(error("[vary]\n" + quoted + " = [1]\n")));  // a case key
+  EXPECT_TRUE(quotes_only_an_excerpt(error("[vary]\nshell.h = [" + quoted + "]\n")));  // a value
+  EXPECT_TRUE(quotes_only_an_excerpt(
+      error("[vary]\nshell.h = { from = \"1 mm\", to = \"2 mm\", count = 2, " + quoted +
+            " = 1 }\n")));                                                       // a range's key
+  EXPECT_TRUE(quotes_only_an_excerpt(error("base = " + quoted + "\n" + vary)));  // a path
+  EXPECT_TRUE(quotes_only_an_excerpt(error("output = " + quoted + "\n" + vary)));
+  const auto raw = error("title = " + hostile + "\n" + vary);  // not TOML
+  EXPECT_TRUE(quotes_only_an_excerpt(raw, false)) << raw;
 }
 
 Spec small_spec(const fs::path& dir) {
