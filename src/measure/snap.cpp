@@ -340,19 +340,27 @@ void find_onset(Context& x) {
   }
 }
 
-void snap_from_transition(Context& x) {
-  auto& a = x.a;
+namespace {
+
+// The snap's window on the contact transition: from the foot of the force's rise into the onset
+// to the popper's leaving the plate (or the shell's return to a ring contact).
+struct SnapWindow {
+  std::size_t first = 0;        // the foot of the force's rise
+  std::size_t last = 0;         // the window's end
+  std::size_t search_last = 0;  // the launch's crossing is looked for up to here
+  std::optional<std::size_t> contact_lost;
+  bool ring_again = false;
+  bool launch_from_contact = false;
+  std::size_t peak = 0;  // F*'s sample
+};
+
+void snap_values_at_onset(Context& x) {
   const auto& series = x.series;
-  const auto& options = x.options;
-  const auto t = x.t;
-  const auto F = x.F;
-  const std::size_t n = x.n;
-  const double t_on = *a.t_onset;
-  const auto& on = x.onset_columns;
-  x.snap_seen = true;
+  const double t_on = *x.a.t_onset;
   const auto at_onset = [&](std::string_view key, std::string_view column) {
     if (series.has(column)) {
-      x.put(key, interpolate(t, series.column(column), t_on), fmt::format("{}, {}", on, column));
+      x.put(key, interpolate(x.t, series.column(column), t_on),
+            fmt::format("{}, {}", x.onset_columns, column));
     }
   };
   at_onset("r_star", kContactRadius);
@@ -360,20 +368,29 @@ void snap_from_transition(Context& x) {
   at_onset("e_apex_star", kApexDisplacement);
   at_onset("H_l", kHeight);
   at_onset("delta_p_onset", kPressure);
+}
 
+// The end of the snap's window (SnapWindow::first is left to the caller).
+SnapWindow snap_window_end(const Context& x) {
+  const auto& a = x.a;
+  const auto& series = x.series;
+  const auto& options = x.options;
+  const auto t = x.t;
+  const auto F = x.F;
+  const std::size_t n = x.n;
+  SnapWindow win;
   // The snap lasts until the popper leaves the plate or the shell goes back to a ring contact:
   // the apex again above the onset level while the plate still pushes (after a snap without a
   // launch, the suction can pull the shell back in and the popper lands on it again; that
   // landing is not the snap's force). F* and the launch are looked for within it.
-  std::size_t last = n - 1;
-  bool ring_again = false;
+  win.last = n - 1;
   if (a.onset_source == OnsetSource::ApexGap) {
     const auto w = series.column(kApexGap);
     const double level = options.onset_ratio * *a.R;
     for (std::size_t i = *x.onset + 1; i < n; ++i) {
       if (w[i] > level && F[i] > 0.0) {
-        last = i;
-        ring_again = true;
+        win.last = i;
+        win.ring_again = true;
         break;
       }
     }
@@ -381,18 +398,16 @@ void snap_from_transition(Context& x) {
   // A contact column that says "none" for min_flight_time after the onset (a record that ends
   // sooner does not count): the popper is off the plate, whatever F reads (a plate ringing, an
   // offset); the snap's window ends there.
-  std::optional<std::size_t> contact_lost;
-  bool launch_from_contact = false;
   if (series.has_contact()) {
     const auto cs = series.contact();
-    for (std::size_t i = *x.onset + 1; i <= last; ++i) {
+    for (std::size_t i = *x.onset + 1; i <= win.last; ++i) {
       if (cs[i] != ContactState::None) continue;
       std::size_t j = i;
       while (j + 1 < n && cs[j + 1] == ContactState::None) ++j;
       const double until = j + 1 == n ? t[j] : t[j + 1];
       if (until - t[i] >= options.min_flight_time) {
-        contact_lost = i;
-        last = i;
+        win.contact_lost = i;
+        win.last = i;
         break;
       }
       i = j;
@@ -400,86 +415,104 @@ void snap_from_transition(Context& x) {
   }
   // The launch's crossing of the threshold may come up to min_flight_time after the contact
   // is lost (the plate rings on).
-  std::size_t search_last = last;
-  if (contact_lost) {
-    while (search_last + 1 < n && t[search_last + 1] <= t[last] + options.min_flight_time) {
-      ++search_last;
+  win.search_last = win.last;
+  if (win.contact_lost) {
+    while (win.search_last + 1 < n &&
+           t[win.search_last + 1] <= t[win.last] + options.min_flight_time) {
+      ++win.search_last;
     }
   }
-  // The snap's force can rise, and even peak, before the apex criterion fires (a gradual
-  // eversion): the window starts at the foot of the force's rise into the onset.
-  // (When the onset lies on the falling flank of a peak, the rise to that peak.)
-  const std::size_t first =
-      signal::rise_start(F, signal::peak_behind(F, *x.onset, x.rise_floor), x.rise_floor).index;
-  rest_before(x, first);
-  const auto window_peak =
-      static_cast<std::size_t>(std::max_element(F.begin() + static_cast<std::ptrdiff_t>(first),
-                                                F.begin() + static_cast<std::ptrdiff_t>(last) + 1) -
-                               F.begin());
-  std::size_t peak = window_peak;
-  const std::string force_columns = fmt::format("{}, F{}", on, series.has(kHeight) ? ", z" : "");
-  LaunchRule rule{&options, std::nullopt, x.threshold_cap()};
-  if (F[window_peak] > 0.0) {
-    estimate_noise(x, first, window_peak, F[window_peak]);
-    rule.noise = a.force_noise;
-    // The first launch ends the snap: the force peak is the largest before it (a landing later
-    // in the record is not the snap's force).
-    if (const auto launch = find_launch(series, rule, first, search_last, a.warnings)) {
-      peak = launch->peak;
-      x.put("t_launch", launch->t, force_columns);
-      std::size_t k = peak + 1;
-      while (k < n && t[k] < *a.t_launch) ++k;
-      last = std::min(last, k);
-    } else if (contact_lost) {
-      launch_from_contact = true;
-      x.put("t_launch", t[*contact_lost], "t, contact");
-      a.warnings.push_back(fmt::format(
-          "F does not stay below the launch threshold, but the contact column says the shell is "
-          "off the plate from t = {:.6g} s: the launch is taken from the contact column",
-          t[*contact_lost]));
-    }
-  } else {
+  return win;
+}
+
+// F*'s sample and the launch within the window (from F, or else from the contact column).
+void snap_peak_and_launch(Context& x, SnapWindow& win, LaunchRule& rule,
+                          const std::string& force_columns) {
+  auto& a = x.a;
+  const auto t = x.t;
+  const auto F = x.F;
+  const auto window_peak = static_cast<std::size_t>(
+      std::max_element(F.begin() + static_cast<std::ptrdiff_t>(win.first),
+                       F.begin() + static_cast<std::ptrdiff_t>(win.last) + 1) -
+      F.begin());
+  win.peak = window_peak;
+  if (!(F[window_peak] > 0.0)) {
     a.warnings.push_back(
         fmt::format("F is never positive after the onset (peak {} N): no launch", F[window_peak]));
+    return;
   }
-  x.put("F_star", F[peak], fmt::format("{}, F", on));
-  x.put("t_F_star", t[peak], fmt::format("{}, F", on));
-  report_threshold(x, rule, "t, F");
-  if (a.t_launch) {
-    if (launch_from_contact) {
-      // F could not tell the flight (it never stayed low): the contact column tells the end.
-      const auto cs = series.contact();
-      std::size_t k = last;
-      while (k < n &&
-             (t[k] <= *a.t_launch + options.min_flight_time || cs[k] == ContactState::None)) {
-        ++k;
-      }
-      if (k < n) x.landing = k;
-      if (x.landing) x.put("t_landing", t[k], "t, contact");
-    } else {
-      x.landing = landing_after(x, last, *a.t_launch, rule.landing_ceiling(*a.F_star));
-      if (x.landing) x.put("t_landing", t[*x.landing], "t, F");
+  estimate_noise(x, win.first, window_peak, F[window_peak]);
+  rule.noise = a.force_noise;
+  // The first launch ends the snap: the force peak is the largest before it (a landing later
+  // in the record is not the snap's force).
+  if (const auto launch = find_launch(x.series, rule, win.first, win.search_last, a.warnings)) {
+    win.peak = launch->peak;
+    x.put("t_launch", launch->t, force_columns);
+    std::size_t k = win.peak + 1;
+    while (k < x.n && t[k] < *a.t_launch) ++k;
+    win.last = std::min(win.last, k);
+  } else if (win.contact_lost) {
+    win.launch_from_contact = true;
+    x.put("t_launch", t[*win.contact_lost], "t, contact");
+    a.warnings.push_back(fmt::format(
+        "F does not stay below the launch threshold, but the contact column says the shell is "
+        "off the plate from t = {:.6g} s: the launch is taken from the contact column",
+        t[*win.contact_lost]));
+  }
+}
+
+// The landing after the launch: from F, or from the contact column when F could not tell the
+// flight.
+void snap_landing(Context& x, const SnapWindow& win, const LaunchRule& rule) {
+  auto& a = x.a;
+  const auto t = x.t;
+  const std::size_t n = x.n;
+  if (!a.t_launch) return;
+  if (win.launch_from_contact) {
+    // F could not tell the flight (it never stayed low): the contact column tells the end.
+    const auto cs = x.series.contact();
+    std::size_t k = win.last;
+    while (k < n &&
+           (t[k] <= *a.t_launch + x.options.min_flight_time || cs[k] == ContactState::None)) {
+      ++k;
     }
+    if (k < n) x.landing = k;
+    if (x.landing) x.put("t_landing", t[k], "t, contact");
+  } else {
+    x.landing = landing_after(x, win.last, *a.t_launch, rule.landing_ceiling(*a.F_star));
+    if (x.landing) x.put("t_landing", t[*x.landing], "t, F");
   }
-  if (options.plate_frequency) {
-    const auto plate = plate_response(t, F, *options.plate_frequency, options.plate_damping);
-    // The plate lags: its peak may come up to a period after the raw window's end.
-    const double until = t[last] + 1.0 / *options.plate_frequency;
-    std::size_t end = last + 1;
-    while (end < n && t[end] <= until) ++end;
-    x.put("F_star_plate",
-          *std::max_element(plate.begin() + static_cast<std::ptrdiff_t>(first),
-                            plate.begin() + static_cast<std::ptrdiff_t>(end)),
-          fmt::format("{}, F (through the plate model)", on));
-  }
-  force_rise(x, peak, "t, F");
+}
+
+// F* as the plate model shows it, when the options give the plate's frequency.
+void snap_plate_peak(Context& x, const SnapWindow& win) {
+  const auto& options = x.options;
+  if (!options.plate_frequency) return;
+  const auto t = x.t;
+  const auto plate = plate_response(t, x.F, *options.plate_frequency, options.plate_damping);
+  // The plate lags: its peak may come up to a period after the raw window's end.
+  const double until = t[win.last] + 1.0 / *options.plate_frequency;
+  std::size_t end = win.last + 1;
+  while (end < x.n && t[end] <= until) ++end;
+  x.put("F_star_plate",
+        *std::max_element(plate.begin() + static_cast<std::ptrdiff_t>(win.first),
+                          plate.begin() + static_cast<std::ptrdiff_t>(end)),
+        fmt::format("{}, F (through the plate model)", x.onset_columns));
+}
+
+// t*, or why the snap settles without a launch, or why the record cannot tell.
+void snap_conclusion(Context& x, const SnapWindow& win) {
+  auto& a = x.a;
+  const auto& options = x.options;
+  const auto t = x.t;
+  const double t_on = *a.t_onset;
   // After a launch the apex rises with the popper (and a noisy F may be above 0): only without
   // one does the shell's return to a ring contact say something.
-  if (ring_again && !a.t_launch) {
+  if (win.ring_again && !a.t_launch) {
     a.warnings.push_back(fmt::format(
         "the shell is back on a ring contact at t = {:.6g} s (w / R above {} while F > 0) "
         "without having left the plate: F* is the largest force before that",
-        t[last], options.onset_ratio));
+        t[win.last], options.onset_ratio));
   }
   if (a.t_launch && *a.t_launch < t_on) {
     // The popper left the plate before the apex came down: no snap from the plate. When z shows
@@ -492,12 +525,38 @@ void snap_from_transition(Context& x) {
     a.t_star_rise.reset();
     a.sources.erase("t_star_rise");
   } else if (a.t_launch) {
-    x.put("t_star", *a.t_launch - t_on, merge_sources(on, a.source("t_launch")));
-  } else if (ring_again || options.complete || t.back() - *a.t_F_star >= options.settle_time) {
+    x.put("t_star", *a.t_launch - t_on, merge_sources(x.onset_columns, a.source("t_launch")));
+  } else if (win.ring_again || options.complete || t.back() - *a.t_F_star >= options.settle_time) {
     x.snap_settled = true;
   } else {
     a.undetermined = ends_before_settled(x);
   }
+}
+
+}  // namespace
+
+void snap_from_transition(Context& x) {
+  const auto& on = x.onset_columns;
+  const auto F = x.F;
+  x.snap_seen = true;
+  snap_values_at_onset(x);
+  SnapWindow win = snap_window_end(x);
+  // The snap's force can rise, and even peak, before the apex criterion fires (a gradual
+  // eversion): the window starts at the foot of the force's rise into the onset.
+  // (When the onset lies on the falling flank of a peak, the rise to that peak.)
+  win.first =
+      signal::rise_start(F, signal::peak_behind(F, *x.onset, x.rise_floor), x.rise_floor).index;
+  rest_before(x, win.first);
+  const std::string force_columns = fmt::format("{}, F{}", on, x.series.has(kHeight) ? ", z" : "");
+  LaunchRule rule{&x.options, std::nullopt, x.threshold_cap()};
+  snap_peak_and_launch(x, win, rule, force_columns);
+  x.put("F_star", F[win.peak], fmt::format("{}, F", on));
+  x.put("t_F_star", x.t[win.peak], fmt::format("{}, F", on));
+  report_threshold(x, rule, "t, F");
+  snap_landing(x, win, rule);
+  snap_plate_peak(x, win);
+  force_rise(x, win.peak, "t, F");
+  snap_conclusion(x, win);
 }
 
 void snap_from_force(Context& x) {
