@@ -88,6 +88,110 @@ std::string duration(double s) {
   return fmt::format("{:.1f} h", s / 3600);
 }
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point a) {
+  return std::chrono::duration<double>(Clock::now() - a).count();
+}
+
+// A run's process going on, by its pid.
+struct Running {
+  std::size_t run;
+  Clock::time_point start;
+};
+using RunningRuns = std::map<pid_t, Running>;
+
+// Starts the run the work source names next (resumed from its checkpoint, or from nothing);
+// false when the source has none left.
+bool start_next(const Spec& spec, const std::vector<std::size_t>& todo, const WorkSource& next,
+                const ExecOptions& o, std::ostream& log, RunningRuns& running) {
+  const auto k = next();
+  if (!k) return false;
+  if (*k >= todo.size()) return false;
+  const std::size_t i = todo[*k];
+  const auto& run = spec.runs[i];
+  const auto p = paths_of(spec, run);
+  auto state = state_of(p);
+  std::vector<std::string> args;
+  if (state == RunState::Failed && resumes_after_kill(p)) {
+    // Killed from outside after a checkpoint: go on from it.
+    fs::remove(p.failed);
+    state = RunState::Resumable;
+  }
+  if (state == RunState::Failed || state == RunState::Interrupted) {
+    // Start again from nothing: the run's folder is the sweep's own.
+    fs::remove_all(p.dir);
+    fs::remove(p.failed);
+    state = RunState::New;
+  }
+  if (state == RunState::Done) return true;  // finished meanwhile (another process)
+  if (state == RunState::Resumable) {
+    args = {"run", "--resume", p.dir.string(), "--quiet"};
+  } else {
+    args = {"run", p.case_file.string(), "--output", p.dir.string(), "--quiet"};
+  }
+  {
+    std::ofstream l(p.log, std::ios::app);
+    l << fmt::format("== {} {}\n", state == RunState::Resumable ? "resuming" : "starting",
+                     run.name);
+  }
+  const pid_t pid = spawn_run(o, args, p.log);
+  running[pid] = {i, Clock::now()};
+  std::string what;
+  for (const auto& s : run.settings) what += fmt::format(" {}={}", s.key, s.text);
+  log << fmt::format("{}{} {}{}\n", o.label, run.name,
+                     state == RunState::Resumable ? "resumed" : "started", what)
+      << std::flush;
+  return true;
+}
+
+// How a run whose process ended stands (finished, interrupted by a stop, or failed: then its
+// failed file says why), counted in the report and logged.
+void record_end(const Spec& spec, std::size_t i, double took, int status, bool stopping,
+                const ExecOptions& o, std::ostream& log, ExecReport& report) {
+  const auto& run = spec.runs[i];
+  const auto p = paths_of(spec, run);
+  const auto state = state_of(p);
+  std::string how;
+  if (WIFEXITED(status)) {
+    how = fmt::format("exit status {}", WEXITSTATUS(status));
+  } else if (WIFSIGNALED(status)) {
+    how = fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
+  }
+  if (state == RunState::Done) {
+    ++report.finished;
+    log << fmt::format("{}{} finished in {}\n", o.label, run.name, duration(took));
+  } else if (stopping && (state == RunState::Resumable || state == RunState::Interrupted)) {
+    ++report.interrupted;
+    log << fmt::format(
+        "{}{} interrupted after {} ({})\n", o.label, run.name, duration(took),
+        state == RunState::Resumable ? "it resumes from its checkpoint" : "it starts again");
+  } else {
+    ++report.failed;
+    const std::string why = fmt::format("{}; log {}:\n{}", how, p.log.string(), tail_of(p.log, 4));
+    std::ofstream f(p.failed);
+    f << why;
+    log << fmt::format("{}{} FAILED after {} ({}); see {}\n", o.label, run.name, duration(took),
+                       how, p.log.string());
+  }
+}
+
+// The progress line after a run ended; one process that sees the whole sweep (no label) also
+// estimates what is left from the mean run-seconds `busy` of those done here.
+void log_progress(const ExecReport& report, std::size_t todo, std::size_t running, double busy,
+                  double elapsed, const ExecOptions& o, std::ostream& log) {
+  const int done_here = report.finished + report.failed + report.interrupted;
+  std::string eta;
+  if (o.label.empty()) {
+    const double mean = busy / done_here;
+    const auto left = static_cast<double>(todo - static_cast<std::size_t>(done_here));
+    eta = fmt::format(" of {}, about {} to go", todo, duration(mean * left / std::max(1, o.jobs)));
+  }
+  log << fmt::format("{}{} run(s) done{}, {} running, {} elapsed\n", o.label, done_here, eta,
+                     running, duration(elapsed))
+      << std::flush;
+}
+
 }  // namespace
 
 fs::path self_executable() { return fs::read_symlink("/proc/self/exe"); }
@@ -104,78 +208,28 @@ std::vector<std::size_t> runs_to_do(const Spec& spec, bool retry_failed) {
 
 ExecReport execute(const Spec& spec, const std::vector<std::size_t>& todo, const WorkSource& next,
                    const ExecOptions& o, std::ostream& log, const std::function<void()>& idle) {
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  const auto seconds = [](clock::time_point a) {
-    return std::chrono::duration<double>(clock::now() - a).count();
-  };
-  struct Running {
-    std::size_t run;
-    clock::time_point start;
-  };
-  std::map<pid_t, Running> running;
+  const auto t0 = Clock::now();
+  RunningRuns running;
   ExecReport report;
   double busy = 0.0;  // run-seconds finished here
   bool exhausted = false;
-
-  const auto start_one = [&]() -> bool {
-    const auto k = next();
-    if (!k) return false;
-    if (*k >= todo.size()) return false;
-    const std::size_t i = todo[*k];
-    const auto& run = spec.runs[i];
-    const auto p = paths_of(spec, run);
-    auto state = state_of(p);
-    std::vector<std::string> args;
-    if (state == RunState::Failed && resumes_after_kill(p)) {
-      // Killed from outside after a checkpoint: go on from it.
-      fs::remove(p.failed);
-      state = RunState::Resumable;
-    }
-    if (state == RunState::Failed || state == RunState::Interrupted) {
-      // Start again from nothing: the run's folder is the sweep's own.
-      fs::remove_all(p.dir);
-      fs::remove(p.failed);
-      state = RunState::New;
-    }
-    if (state == RunState::Done) return true;  // finished meanwhile (another process)
-    if (state == RunState::Resumable) {
-      args = {"run", "--resume", p.dir.string(), "--quiet"};
-    } else {
-      args = {"run", p.case_file.string(), "--output", p.dir.string(), "--quiet"};
-    }
-    {
-      std::ofstream l(p.log, std::ios::app);
-      l << fmt::format("== {} {}\n", state == RunState::Resumable ? "resuming" : "starting",
-                       run.name);
-    }
-    const pid_t pid = spawn_run(o, args, p.log);
-    running[pid] = {i, clock::now()};
-    std::string what;
-    for (const auto& s : run.settings) what += fmt::format(" {}={}", s.key, s.text);
-    log << fmt::format("{}{} {}{}\n", o.label, run.name,
-                       state == RunState::Resumable ? "resumed" : "started", what)
-        << std::flush;
-    return true;
-  };
-
-  std::optional<clock::time_point> stop_at;
+  std::optional<Clock::time_point> stop_at;
   bool forwarded = false;
   while (true) {
     if (!stop_at && o.stop_requested && o.stop_requested()) {
-      stop_at = clock::now();
+      stop_at = Clock::now();
       report.stopped = true;
       exhausted = true;
       log << fmt::format("{}stopping: no run is started; waiting for the {} running\n", o.label,
                          running.size())
           << std::flush;
     }
-    if (stop_at && !forwarded && seconds(*stop_at) > kForwardAfter) {
+    if (stop_at && !forwarded && seconds_since(*stop_at) > kForwardAfter) {
       for (const auto& [pid, r] : running) ::kill(pid, SIGINT);
       forwarded = true;
     }
     while (!exhausted && static_cast<int>(running.size()) < o.jobs) {
-      if (!start_one()) exhausted = true;
+      if (!start_next(spec, todo, next, o, log, running)) exhausted = true;
     }
     if (running.empty()) break;
     int status = 0;
@@ -193,45 +247,10 @@ ExecReport execute(const Spec& spec, const std::vector<std::size_t>& todo, const
     if (it == running.end()) continue;
     const auto [i, start] = it->second;
     running.erase(it);
-    const double took = seconds(start);
+    const double took = seconds_since(start);
     busy += took;
-    const auto& run = spec.runs[i];
-    const auto p = paths_of(spec, run);
-    const auto state = state_of(p);
-    std::string how;
-    if (WIFEXITED(status)) {
-      how = fmt::format("exit status {}", WEXITSTATUS(status));
-    } else if (WIFSIGNALED(status)) {
-      how = fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
-    }
-    if (state == RunState::Done) {
-      ++report.finished;
-      log << fmt::format("{}{} finished in {}\n", o.label, run.name, duration(took));
-    } else if (stop_at && (state == RunState::Resumable || state == RunState::Interrupted)) {
-      ++report.interrupted;
-      log << fmt::format(
-          "{}{} interrupted after {} ({})\n", o.label, run.name, duration(took),
-          state == RunState::Resumable ? "it resumes from its checkpoint" : "it starts again");
-    } else {
-      ++report.failed;
-      const std::string why =
-          fmt::format("{}; log {}:\n{}", how, p.log.string(), tail_of(p.log, 4));
-      std::ofstream f(p.failed);
-      f << why;
-      log << fmt::format("{}{} FAILED after {} ({}); see {}\n", o.label, run.name, duration(took),
-                         how, p.log.string());
-    }
-    const int done_here = report.finished + report.failed + report.interrupted;
-    std::string eta;
-    if (o.label.empty()) {  // one process sees the whole sweep: estimate what is left
-      const double mean = busy / done_here;
-      const auto left = static_cast<double>(todo.size() - static_cast<std::size_t>(done_here));
-      eta = fmt::format(" of {}, about {} to go", todo.size(),
-                        duration(mean * left / std::max(1, o.jobs)));
-    }
-    log << fmt::format("{}{} run(s) done{}, {} running, {} elapsed\n", o.label, done_here, eta,
-                       running.size(), duration(seconds(t0)))
-        << std::flush;
+    record_end(spec, i, took, status, stop_at.has_value(), o, log, report);
+    log_progress(report, todo.size(), running.size(), busy, seconds_since(t0), o, log);
   }
   return report;
 }
