@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <numbers>
 #include <ostream>
 #include <stdexcept>
@@ -512,22 +513,26 @@ double fit_intercept(const std::vector<double>& x, const std::vector<double>& y,
   return A.colPivHouseholderQr().solve(b)(0);
 }
 
-Constants compute_core(const SolverOptions& o) {
-  const ChebBasis B(o.resolution);
-  Constants c;
-  double max_res = 0, max_off = 0;
+// The worst residuals over the solutions used (Constants::max_residual, max_offgrid_residual).
+struct WorstResiduals {
+  double residual = 0, offgrid = 0;
+  void add(double r, double off) {
+    residual = std::max(residual, r);
+    offgrid = std::max(offgrid, off);
+  }
+};
 
-  // Ridge boundary layer.
-  const RidgeState R = ridge_state(o, B);
+// The ridge boundary layer's constants: I, n2 and the mirror-buckling energy prefactors.
+void ridge_constants(const RidgeState& R, Constants& c, WorstResiduals& worst) {
   c.ridge_I = R.sol.I;
   c.n2 = R.sol.n2;
   c.mirror_energy_prefactor = kPi * c.ridge_I / std::pow(12.0, 0.75);
   c.mirror_energy_prefactor_cap_height = std::pow(2.0, 1.5) * c.mirror_energy_prefactor;
-  max_res = std::max(max_res, R.sol.residual);
-  max_off = std::max(max_off, R.sol.offgrid_residual);
+  worst.add(R.sol.residual, R.sol.offgrid_residual);
+}
 
-  // Disk branch and its end.
-  const std::vector<DiskState> disk = disk_states(o, B, std::numeric_limits<double>::infinity());
+// The disk branch's end (N+), its gaps and the least slope dN/de along it (the inflection).
+void disk_end_constants(const std::vector<DiskState>& disk, Constants& c, WorstResiduals& worst) {
   const DiskPoint& end = disk.back().pt;
   c.N_plus = end.N;
   c.a_plus = end.a;
@@ -537,11 +542,9 @@ Constants compute_core(const SolverOptions& o) {
   c.e_hat_ring_law_at_plus = std::pow(c.N_plus / c.n2, 2);
   c.min_disk_gap = 1e300;
   for (const auto& s : disk) {
-    max_res = std::max(max_res, s.pt.residual);
-    max_off = std::max(max_off, s.pt.offgrid_residual);
+    worst.add(s.pt.residual, s.pt.offgrid_residual);
     c.min_disk_gap = std::min(c.min_disk_gap, s.pt.min_gap);
   }
-  // Slope dN/de along the branch and its minimum (inflection).
   c.disk_min_slope = 1e300;
   for (size_t i = 1; i < disk.size(); ++i) {
     const double de = disk[i].pt.e_hat - disk[i - 1].pt.e_hat;
@@ -551,8 +554,10 @@ Constants compute_core(const SolverOptions& o) {
       c.disk_e_hat_inflection = 0.5 * (disk[i].pt.e_hat + disk[i - 1].pt.e_hat);
     }
   }
+}
 
-  // Reissner slope from the small-load end.
+// The Reissner slope from the small-load end of the disk branch.
+void reissner_constants(const std::vector<DiskState>& disk, Constants& c) {
   std::vector<double> ex, ry;
   for (const auto& s : disk)
     if (s.pt.e_hat <= 0.3) {
@@ -565,8 +570,13 @@ Constants compute_core(const SolverOptions& o) {
     c.reissner_slope = q3;
     c.reissner_fit_spread = std::abs(q3 - q2);
   }
+}
 
-  // Paper's lower bound: the disk branch meets N = n2 sqrt(e_hat).
+// The lower bounds: where the disk branch meets the ring law N = n2 sqrt(e_hat) (the paper's
+// construction, with the computed n2 and with the paper's), and N = n2 sqrt(2 e_hat) (the
+// reference note's geometry).
+void lower_bound_constants(const SolverOptions& o, const ChebBasis& B,
+                           const std::vector<DiskState>& disk, Constants& c) {
   DiskState cross;
   const double n2 = c.n2;
   if (disk_crossing(
@@ -583,7 +593,6 @@ Constants compute_core(const SolverOptions& o) {
     c.a_minus_paper_n2 = cross.pt.a;
     c.e_hat_minus_paper_n2 = cross.pt.e_hat;
   }
-  // Note-consistent ring law N = n2 sqrt(2 e_hat).
   const auto note_law = [n2](double e) { return n2 * std::sqrt(2.0 * e); };
   c.max_disk_over_note_law = 0;
   for (const auto& s : disk)
@@ -593,14 +602,17 @@ Constants compute_core(const SolverOptions& o) {
     c.a_minus_note = cross.pt.a;
     c.e_hat_minus_note = cross.pt.e_hat;
   }
+}
 
-  // Computed ring branch, down to its end on the disk branch.
+// The computed ring branch, down to its end on the disk branch: its gaps, its end and its
+// minima in N and in e_hat.
+void ring_constants(const SolverOptions& o, const ChebBasis& B, const RidgeState& R, Constants& c,
+                    WorstResiduals& worst) {
   const std::vector<RingState> ring = ring_states(o, B, R, 0.0);
   c.min_ring_gap = 1e300;
   c.min_ring_apex_gap = 1e300;
   for (const auto& s : ring) {
-    max_res = std::max(max_res, s.pt.residual);
-    max_off = std::max(max_off, s.pt.offgrid_residual);
+    worst.add(s.pt.residual, s.pt.offgrid_residual);
     c.min_ring_gap = std::min(c.min_ring_gap, s.pt.min_gap);
     c.min_ring_apex_gap = std::min(c.min_ring_apex_gap, s.pt.apex_gap);
   }
@@ -617,33 +629,46 @@ Constants compute_core(const SolverOptions& o) {
   ring_minimum(o, B, ring, iN, getN, getE, c.ring_a_at_N_min, c.ring_N_min, c.ring_e_hat_at_N_min);
   ring_minimum(o, B, ring, iE, getE, getN, c.ring_a_at_e_hat_min, c.ring_e_hat_min,
                c.ring_N_at_e_hat_min);
+}
 
-  // n2 from large rings of the full problem: N/a = n2 + c1/a + c2/a^2 + c3/a^3.
-  {
-    std::vector<double> u, y;
-    for (const double a : {20.0, 30.0, 40.0, 60.0}) {
-      RingState big;
-      if (!ring_from_ridge(o, B, R, a, big))
-        throw std::runtime_error("contact: large ring solve failed at a = " + std::to_string(a));
-      max_res = std::max(max_res, big.pt.residual);
-      max_off = std::max(max_off, big.pt.offgrid_residual);
-      c.min_ring_gap = std::min(c.min_ring_gap, big.pt.min_gap);
-      u.push_back(1.0 / a);
-      y.push_back(big.pt.N / a);
-    }
-    // Lagrange extrapolation to u = 0 through the four points.
-    double v = 0;
-    for (size_t i = 0; i < u.size(); ++i) {
-      double wgt = 1;
-      for (size_t j = 0; j < u.size(); ++j)
-        if (j != i) wgt *= (0.0 - u[j]) / (u[i] - u[j]);
-      v += wgt * y[i];
-    }
-    c.n2_ring_extrapolated = v;
+// n2 from large rings of the full problem: N/a = n2 + c1/a + c2/a^2 + c3/a^3, extrapolated to
+// a -> infinity (Lagrange through the four points in u = 1/a).
+void large_ring_n2(const SolverOptions& o, const ChebBasis& B, const RidgeState& R, Constants& c,
+                   WorstResiduals& worst) {
+  std::vector<double> u, y;
+  for (const double a : {20.0, 30.0, 40.0, 60.0}) {
+    RingState big;
+    if (!ring_from_ridge(o, B, R, a, big))
+      throw std::runtime_error("contact: large ring solve failed at a = " + std::to_string(a));
+    worst.add(big.pt.residual, big.pt.offgrid_residual);
+    c.min_ring_gap = std::min(c.min_ring_gap, big.pt.min_gap);
+    u.push_back(1.0 / a);
+    y.push_back(big.pt.N / a);
   }
+  double v = 0;
+  for (size_t i = 0; i < u.size(); ++i) {
+    double wgt = 1;
+    for (size_t j = 0; j < u.size(); ++j)
+      if (j != i) wgt *= (0.0 - u[j]) / (u[i] - u[j]);
+    v += wgt * y[i];
+  }
+  c.n2_ring_extrapolated = v;
+}
 
-  c.max_residual = max_res;
-  c.max_offgrid_residual = max_off;
+Constants compute_core(const SolverOptions& o) {
+  const ChebBasis B(o.resolution);
+  Constants c;
+  WorstResiduals worst;
+  const RidgeState R = ridge_state(o, B);
+  ridge_constants(R, c, worst);
+  const std::vector<DiskState> disk = disk_states(o, B, std::numeric_limits<double>::infinity());
+  disk_end_constants(disk, c, worst);
+  reissner_constants(disk, c);
+  lower_bound_constants(o, B, disk, c);
+  ring_constants(o, B, R, c, worst);
+  large_ring_n2(o, B, R, c, worst);
+  c.max_residual = worst.residual;
+  c.max_offgrid_residual = worst.offgrid;
   return c;
 }
 
