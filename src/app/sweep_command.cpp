@@ -96,79 +96,87 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
     return kExitBadInput;
   }
   if (!output_.empty()) spec.output = output_;
-  const fs::path table = spec.output / "sweep.csv";
-
   if (dry_run_) {
-    fmt::print(out, "sweep {}: {} runs into {}\n", file_, spec.runs.size(), spec.output.string());
-    for (const auto& r : spec.runs) {
-      std::string what;
-      for (const auto& s : r.settings) what += fmt::format("  {} = {}", s.key, s.text);
-      fmt::print(out, "  {}  {:<11}{}\n", r.name,
-                 sweep::to_string(sweep::state_of(sweep::paths_of(spec, r))), what);
-    }
+    list_runs(spec, out);
     return kExitOk;
   }
-
   sweep::ExecOptions options;
   options.executable = sweep::self_executable();
   options.threads = threads_;
   options.retry_failed = retry_failed_;
+  if (sweep::launched_by_mpi()) return run_over_mpi(spec, options, out, err);
+  return run_in_this_process(spec, options, out, err);
+}
 
-  if (sweep::launched_by_mpi()) {
-    sweep::MpiWork mpi;
-    const bool root = mpi.rank() == 0;
-    bool ok = true;
-    std::optional<io::FolderLock> lock;
-    if (root) {
-      try {
-        if (!table_only_) {
-          sweep::check_folder(spec);  // before the lock: a refused folder gets no lock file
-          fs::create_directories(spec.output);
-          lock.emplace(spec.output, "sweep.lock", "the sweep folder");
-          sweep::prepare_folder(spec);
-        }
-      } catch (const std::exception& e) {
-        fmt::print(err, "error: {}\n", error_text(e, "preparing the sweep"));
-        ok = false;
-      }
-    }
-    if (!mpi.all(ok)) return kExitBadInput;
-    std::vector<std::size_t> todo;
-    if (root && !table_only_) todo = sweep::runs_to_do(spec, retry_failed_);
-    mpi.broadcast(todo);
-    if (root) {
-      fmt::print(out, "sweep {}: {} runs, {} to do, over {} MPI processes; folder {}\n", file_,
-                 spec.runs.size(), todo.size(), mpi.size(), spec.output.string());
-    }
-    options.jobs = jobs_ > 0 ? jobs_ : 1;
-    options.label = fmt::format("rank {}: ", mpi.rank());
-    sweep::ExecReport report;
-    bool run_ok = true;
+void SweepCommand::list_runs(const sweep::Spec& spec, std::ostream& out) const {
+  fmt::print(out, "sweep {}: {} runs into {}\n", file_, spec.runs.size(), spec.output.string());
+  for (const auto& r : spec.runs) {
+    std::string what;
+    for (const auto& s : r.settings) what += fmt::format("  {} = {}", s.key, s.text);
+    fmt::print(out, "  {}  {:<11}{}\n", r.name,
+               sweep::to_string(sweep::state_of(sweep::paths_of(spec, r))), what);
+  }
+}
+
+int SweepCommand::run_over_mpi(const sweep::Spec& spec, sweep::ExecOptions options,
+                               std::ostream& out, std::ostream& err) const {
+  const fs::path table = spec.output / "sweep.csv";
+  sweep::MpiWork mpi;
+  const bool root = mpi.rank() == 0;
+  bool ok = true;
+  std::optional<io::FolderLock> lock;
+  if (root) {
     try {
-      report = sweep::execute(
-          spec, todo, [&] { return std::optional(mpi.next()); }, options, out,
-          [&] { mpi.progress(); });
+      if (!table_only_) {
+        sweep::check_folder(spec);  // before the lock: a refused folder gets no lock file
+        fs::create_directories(spec.output);
+        lock.emplace(spec.output, "sweep.lock", "the sweep folder");
+        sweep::prepare_folder(spec);
+      }
     } catch (const std::exception& e) {
-      fmt::print(err, "rank {}: error: {}\n", mpi.rank(), error_text(e, "running the sweep"));
+      fmt::print(err, "error: {}\n", error_text(e, "preparing the sweep"));
+      ok = false;
+    }
+  }
+  if (!mpi.all(ok)) return kExitBadInput;
+  std::vector<std::size_t> todo;
+  if (root && !table_only_) todo = sweep::runs_to_do(spec, retry_failed_);
+  mpi.broadcast(todo);
+  if (root) {
+    fmt::print(out, "sweep {}: {} runs, {} to do, over {} MPI processes; folder {}\n", file_,
+               spec.runs.size(), todo.size(), mpi.size(), spec.output.string());
+  }
+  options.jobs = jobs_ > 0 ? jobs_ : 1;
+  options.label = fmt::format("rank {}: ", mpi.rank());
+  sweep::ExecReport report;
+  bool run_ok = true;
+  try {
+    report = sweep::execute(
+        spec, todo, [&] { return std::optional(mpi.next()); }, options, out,
+        [&] { mpi.progress(); });
+  } catch (const std::exception& e) {
+    fmt::print(err, "rank {}: error: {}\n", mpi.rank(), error_text(e, "running the sweep"));
+    run_ok = false;
+  }
+  const long failed = mpi.sum(report.failed);
+  run_ok = mpi.all(run_ok);
+  if (root) {
+    try {
+      const int with_result = sweep::write_table(spec, table);
+      const int all_failed = failed_runs(spec);
+      fmt::print(out, "sweep done: {} of {} runs have a result, {} failed ({} now); table {}\n",
+                 with_result, spec.runs.size(), all_failed, failed, table.string());
+      if (all_failed > 0) run_ok = false;
+    } catch (const std::exception& e) {
+      fmt::print(err, "error: {}\n", error_text(e, "writing the sweep's table"));
       run_ok = false;
     }
-    const long failed = mpi.sum(report.failed);
-    run_ok = mpi.all(run_ok);
-    if (root) {
-      try {
-        const int with_result = sweep::write_table(spec, table);
-        const int all_failed = failed_runs(spec);
-        fmt::print(out, "sweep done: {} of {} runs have a result, {} failed ({} now); table {}\n",
-                   with_result, spec.runs.size(), all_failed, failed, table.string());
-        if (all_failed > 0) run_ok = false;
-      } catch (const std::exception& e) {
-        fmt::print(err, "error: {}\n", error_text(e, "writing the sweep's table"));
-        run_ok = false;
-      }
-    }
-    return failed > 0 || !mpi.all(run_ok) ? kExitFailure : kExitOk;
   }
+  return failed > 0 || !mpi.all(run_ok) ? kExitFailure : kExitOk;
+}
 
+int SweepCommand::run_in_this_process(const sweep::Spec& spec, const sweep::ExecOptions& options,
+                                      std::ostream& out, std::ostream& err) const {
   try {
     if (!table_only_) {
       // One sweep per folder: a second one on the same folder is refused. The folder is checked
@@ -180,6 +188,7 @@ int SweepCommand::run(std::ostream& out, std::ostream& err) const {
       sweep::prepare_folder(spec);
       return run_here(spec, options, jobs_, retry_failed_, out);
     }
+    const fs::path table = spec.output / "sweep.csv";
     const int with_result = sweep::write_table(spec, table);
     fmt::print(out, "{} of {} runs have a result; table {}\n", with_result, spec.runs.size(),
                table.string());

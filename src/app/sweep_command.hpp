@@ -25,6 +25,16 @@ class SweepCommand {
   int run(std::ostream& out, std::ostream& err) const;
 
  private:
+  // --dry-run: the runs and their states.
+  void list_runs(const sweep::Spec& spec, std::ostream& out) const;
+  // The sweep shared among the processes of mpirun (rank 0 prepares the folder and writes the
+  // table); the exit status.
+  int run_over_mpi(const sweep::Spec& spec, sweep::ExecOptions options, std::ostream& out,
+                   std::ostream& err) const;
+  // The sweep (or with --table-only its table) in this process alone; the exit status.
+  int run_in_this_process(const sweep::Spec& spec, const sweep::ExecOptions& options,
+                          std::ostream& out, std::ostream& err) const;
+
   CLI::App* cmd_ = nullptr;
   std::string file_;
   std::string output_;
