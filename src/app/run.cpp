@@ -694,15 +694,23 @@ void Run::resume() {
   // one rename: a run killed at any moment keeps either series.csv as it was or the new one,
   // never a series shorter than its checkpoint. The writer goes on appending to the renamed file.
   const fs::path tmp_series = dir_ / "series.csv.tmp";
-  csv_.emplace(tmp_series, columns_, true);
-  std::vector<double> row(columns_.size());
-  for (std::size_t i = 0; i < loop_.rows; ++i) {
-    for (std::size_t k = 0; k < columns_.size(); ++k) row[k] = old.column(columns_[k])[i];
-    series_.add_row(row, old.contact()[i]);
-    csv_->write_row(row, old.contact()[i]);
-    if (options_.fault_after_rewritten_rows && i + 1 == *options_.fault_after_rewritten_rows) {
-      throw std::runtime_error("injected fault in the middle of the series' rewrite");
+  try {
+    csv_.emplace(tmp_series, columns_, true);
+    std::vector<double> row(columns_.size());
+    for (std::size_t i = 0; i < loop_.rows; ++i) {
+      for (std::size_t k = 0; k < columns_.size(); ++k) row[k] = old.column(columns_[k])[i];
+      series_.add_row(row, old.contact()[i]);
+      csv_->write_row(row, old.contact()[i]);
+      if (options_.fault_after_rewritten_rows && i + 1 == *options_.fault_after_rewritten_rows) {
+        throw std::runtime_error("injected fault in the middle of the series' rewrite");
+      }
     }
+  } catch (const io::WriteFailed&) {
+    // A full disk: series.csv stays as it was, and no temporary is left beside it.
+    csv_.reset();
+    std::error_code ignored;
+    fs::remove(tmp_series, ignored);
+    throw;
   }
   fs::rename(tmp_series, dir_ / "series.csv");
   const auto frames = loop_.frames;
@@ -756,6 +764,8 @@ Run::End Run::go_to_the_apex() {
     }
     // At the cap: the state there, for a resume to a later cap.
     if (!apex && end.stop == Stop::No) write_checkpoint(dir_, pop_, loop_);
+  } catch (const io::WriteFailed&) {
+    throw;  // a full disk: the run ends as a write failure, its summary saying which file
   } catch (const std::exception& e) {
     end.status = io::run_status::failure(e.what());
     end.stop = Stop::No;

@@ -6,6 +6,9 @@
 
 namespace snapjump::text {
 
+WriteFailed::WriteFailed(const std::filesystem::path& path, const std::string& why)
+    : std::runtime_error(fmt::format("could not write {}: {}", path.string(), why)), path_(path) {}
+
 std::optional<std::string> read_file_into(const std::filesystem::path& path, std::string& bytes,
                                           std::uintmax_t max_bytes) {
   namespace fs = std::filesystem;

@@ -9,10 +9,24 @@
 #include <filesystem>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
 namespace snapjump::text {
+
+// A file that could not be written (a full disk, a folder that cannot be written): its message
+// is "could not write PATH: why"; the command line ends with app::kExitWriteFailed. Every writer
+// throws it (io::write_file_atomically, and the series' writer that appends row by row), and
+// io::WriteFailed names the same type.
+class WriteFailed : public std::runtime_error {
+ public:
+  WriteFailed(const std::filesystem::path& path, const std::string& why);
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
 
 inline constexpr std::uintmax_t kAnySize = std::numeric_limits<std::uintmax_t>::max();
 

@@ -9,9 +9,6 @@
 
 namespace snapjump::io {
 
-WriteFailed::WriteFailed(const std::filesystem::path& path, const std::string& why)
-    : std::runtime_error(fmt::format("could not write {}: {}", path.string(), why)), path_(path) {}
-
 void write_file_atomically(const std::filesystem::path& path, std::string_view contents,
                            bool binary) {
   const std::filesystem::path tmp = path.string() + ".tmp";

@@ -5,22 +5,14 @@
 #pragma once
 
 #include <filesystem>
-#include <stdexcept>
-#include <string>
 #include <string_view>
+
+#include "config/files.hpp"
 
 namespace snapjump::io {
 
-// A file that could not be written (a full disk, a folder that cannot be written): its message
-// is "could not write PATH: why"; the command line ends with app::kExitWriteFailed.
-class WriteFailed : public std::runtime_error {
- public:
-  WriteFailed(const std::filesystem::path& path, const std::string& why);
-  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
+// A file that could not be written: "could not write PATH: why" (config/files.hpp).
+using WriteFailed = text::WriteFailed;
 
 // Throws WriteFailed naming the file when it cannot be written or renamed; PATH.tmp is removed
 // then, and PATH keeps what it held.

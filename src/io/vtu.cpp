@@ -4,9 +4,8 @@
 #include <fmt/ostream.h>
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
-#include <stdexcept>
+#include <sstream>
 
 #include "io/atomic_file.hpp"
 
@@ -75,8 +74,7 @@ void write_grid(const std::filesystem::path& path, const mesh::Points& x, const 
                 double dz_ref, const mesh::Points& v, const std::vector<int>& connectivity,
                 int per_cell, int type, const std::vector<double>* energy,
                 const std::vector<PointSet>& sets, double time) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+  std::ostringstream out;
   const std::size_t cells = connectivity.size() / static_cast<std::size_t>(per_cell);
   fmt::print(out,
              "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
@@ -106,7 +104,7 @@ void write_grid(const std::filesystem::path& path, const mesh::Points& x, const 
     fmt::print(out, "        </DataArray>\n      </CellData>\n");
   }
   write_cells_and_close(out, connectivity, per_cell, type);
-  if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
+  write_file_atomically(path, std::move(out).str());
 }
 
 // The meridian plane as the plane y = 0 of the snapshot.
@@ -181,8 +179,7 @@ void write_apparatus_vtu(const std::filesystem::path& path, double plate_half_wi
   // The plate: one quadrilateral at z = 0. The container: the side of a cylinder standing on the
   // rim, as 48 quadrilaterals.
   constexpr int kSides = 48;
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path.string()));
+  std::ostringstream out;
   const int points = 4 + 2 * kSides, cells = 1 + kSides;
   fmt::print(out,
              "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" "
@@ -209,7 +206,7 @@ void write_apparatus_vtu(const std::filesystem::path& path, double plate_half_wi
     quads.insert(quads.end(), {a, b, b + 1, a + 1});
   }
   write_cells_and_close(out, quads, 4, 9);  // VTK_QUAD
-  if (!out) throw std::runtime_error(fmt::format("writing {} failed", path.string()));
+  write_file_atomically(path, std::move(out).str());
 }
 
 std::string apparatus_file(const std::string& frame) {

@@ -14,8 +14,9 @@ namespace snapjump::io {
 // Writes the body at positions x with point data displacement (from the reference shape moved
 // along z with the clamped rim, i.e. with the container: the shell's own motion, which ParaView's
 // Warp By Vector shows), velocity and the node sets inner, outer and clamped (0/1), cell data the
-// strain energy density (averaged over the element), and field data TimeValue = time [s]. Throws
-// std::runtime_error on I/O failure.
+// strain energy density (averaged over the element), and field data TimeValue = time [s]. Every
+// snapshot file (and the .pvd) is written through io::write_file_atomically: a failed write
+// leaves no partial file and throws io::WriteFailed naming it.
 void write_vtu(const std::filesystem::path& path, const fem::Body& body, const mesh::Points& x,
                const mesh::Points& v, double time);
 // The axisymmetric body's meridian section as 9-node quadrilaterals in the plane y = 0 (x the

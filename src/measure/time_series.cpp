@@ -5,14 +5,17 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <istream>
 #include <iterator>
 #include <ostream>
 #include <system_error>
 #include <utility>
 
+#include "config/files.hpp"
 #include "config/text.hpp"
 
 namespace snapjump::measure {
@@ -244,7 +247,8 @@ CsvWriter::CsvWriter(const std::filesystem::path& path, std::vector<std::string>
       names_(std::move(columns)),
       with_contact_(with_contact) {
   time_index_ = check_columns(names_, where_);
-  if (!*file_) throw SeriesError(fmt::format("{}: cannot create the file", where_));
+  if (!*file_)
+    throw text::WriteFailed(path, fmt::format("cannot create it: {}", std::strerror(errno)));
   put(header_line(names_, with_contact_));
 }
 
@@ -288,9 +292,15 @@ void CsvWriter::write_comment(std::string_view text) {
 }
 
 void CsvWriter::put(std::string_view text) {
+  errno = 0;
   out_->write(text.data(), static_cast<std::streamsize>(text.size()));
   out_->flush();
-  if (!*out_) throw SeriesError(fmt::format("{}: write failed after {} rows", where_, rows_));
+  if (*out_) return;
+  // A file of its own that cannot be written (a full disk) is a write failure, not bad data.
+  const auto why =
+      fmt::format("{} after {} rows", errno != 0 ? std::strerror(errno) : "an output error", rows_);
+  if (file_) throw text::WriteFailed(where_, why);
+  throw SeriesError(fmt::format("{}: write failed: {}", where_, why));
 }
 
 }  // namespace snapjump::measure

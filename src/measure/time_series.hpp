@@ -151,7 +151,8 @@ class TimeSeries {
 // stops midway leaves every row it produced. Same format as TimeSeries::write_csv.
 class CsvWriter {
  public:
-  // Creates (truncates) the file and writes the header. Throws SeriesError if it cannot.
+  // Creates (truncates) the file and writes the header. Throws text::WriteFailed naming the file
+  // if it cannot.
   CsvWriter(const std::filesystem::path& path, std::vector<std::string> columns,
             bool with_contact = false);
   // Writes to a stream the caller keeps alive.
@@ -162,7 +163,8 @@ class CsvWriter {
   CsvWriter(CsvWriter&&) noexcept;
   CsvWriter& operator=(CsvWriter&&) noexcept;
 
-  // Same checks as TimeSeries::add_row; throws SeriesError, also when the write fails.
+  // Same checks as TimeSeries::add_row, which throw SeriesError; a write to the writer's own file
+  // that fails throws text::WriteFailed (SeriesError for a caller's stream).
   void write_row(std::span<const double> values);
   void write_row(std::span<const double> values, ContactState contact);
   // A '#' comment line (e.g. the case it came from); newlines in text become separate comments.

@@ -2,6 +2,7 @@
 // field of the release loop's state. The axisymmetric coarse popper keeps these tests cheap; the
 // format is the same for both models.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
@@ -13,6 +14,7 @@
 
 #include "app/checkpoint.hpp"
 #include "io/atomic_file.hpp"
+#include "io/vtu.hpp"
 #include "support/hostile_text.hpp"
 
 namespace snapjump::app {
@@ -159,6 +161,41 @@ TEST(AtomicFile, ReplacesWholeOrNotAtAll) {
     EXPECT_NE(std::string(e.what()).find("blocked.json"), std::string::npos);
   }
   EXPECT_EQ(read(), "second\n");
+}
+
+// A snapshot and its collection go through the atomic writer: on a full disk (the temporary a
+// link to /dev/full, where every write fails with ENOSPC) no file of that name appears, empty or
+// cut, no temporary is left, and the error names the file.
+TEST(AtomicFile, ASnapshotThatCannotBeWrittenLeavesNoFile) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("snapjump_snapshot_disk_full_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto expect_no_file = [&](const std::filesystem::path& path, const auto& write) {
+    std::filesystem::create_symlink("/dev/full", path.string() + ".tmp");
+    try {
+      write();
+      ADD_FAILURE() << "a write to a full disk succeeded: " << path;
+    } catch (const io::WriteFailed& e) {
+      EXPECT_EQ(e.path(), path);
+      EXPECT_NE(std::string(e.what()).find("could not write " + path.string()), std::string::npos)
+          << e.what();
+    }
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(path)));
+    EXPECT_FALSE(std::filesystem::exists(std::filesystem::symlink_status(path.string() + ".tmp")));
+  };
+  const auto vtu = dir / "apparatus_00000.vtu";
+  expect_no_file(vtu, [&] { io::write_apparatus_vtu(vtu, 0.06, 0.03, 0.0, 0.03); });
+  const auto pvd = dir / "run.pvd";
+  io::PvdCollection collection(pvd);
+  expect_no_file(pvd, [&] { collection.add(0.0, "snapshots/frame_00000.vtu"); });
+  // With room on the disk, the same snapshot is written whole.
+  io::write_apparatus_vtu(vtu, 0.06, 0.03, 0.0, 0.03);
+  std::ifstream in(vtu);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_TRUE(text.str().ends_with("</VTKFile>\n")) << text.str().size();
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -1212,5 +1212,99 @@ TEST(RunEnd, SigintLeavesAnInterruptedRunThatResumes) {
   EXPECT_EQ(text_of(dir / "series.csv"), text_of(straight / "series.csv"));
 }
 
+// A full disk, made without privileges: the command line `words` runs in a child process whose
+// files may not grow beyond `bytes` (RLIMIT_FSIZE) with SIGXFSZ ignored, so that a write past
+// the limit fails with EFBIG as one on a full disk fails with ENOSPC. Its output goes to `log`
+// (held to the same limit); returns its exit status, or -1 when it did not exit.
+int run_with_file_limit(std::vector<std::string> words, const fs::path& log, rlim_t bytes) {
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {  // only async-signal-safe calls up to the exec
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ::dup2(fd, 1);
+    ::dup2(fd, 2);
+    ::signal(SIGXFSZ, SIG_IGN);  // kept ignored across the exec
+    const rlimit r{bytes, bytes};
+    if (::setrlimit(RLIMIT_FSIZE, &r) != 0) ::_exit(126);
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  if (::waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+// The files under dir whose names end in ".tmp".
+std::vector<std::string> temporaries_under(const fs::path& dir) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    if (e.path().extension() == ".tmp") out.push_back(e.path().string());
+  }
+  return out;
+}
+
+// Every snapshot a run left is whole: no empty or cut .vtu file.
+void expect_whole_snapshots(const fs::path& dir) {
+  if (!fs::exists(dir / "snapshots")) return;
+  for (const auto& e : fs::directory_iterator(dir / "snapshots")) {
+    const auto text = text_of(e.path());
+    EXPECT_TRUE(text.ends_with("</VTKFile>\n")) << e.path() << " holds " << text.size() << " bytes";
+  }
+}
+
+// A disk that fills during a run: every write that would grow a file past 16 KB fails (the
+// first snapshot of the release is larger). The run ends with status 4 naming the file, leaves
+// no temporary file and no cut snapshot, and its summary says it failed and why.
+TEST(RunEnd, AFullDiskEndsTheRunAsAWriteFailure) {
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "snapjump";
+  ASSERT_TRUE(std::filesystem::exists(exe)) << exe << ": build the snapjump target";
+  const auto base = own_folder("snapjump_cli_disk_full_run");
+  const auto dir = base / "run", log = base / "log.txt";
+  const int code =
+      run_with_file_limit({exe.string(), "run", "--model", "axisymmetric", "--resolution", "coarse",
+                           "--end-time", "20ms", "--quiet", "--output", dir.string()},
+                          log, 16 << 10);
+  EXPECT_EQ(code, kExitWriteFailed) << text_of(log);
+  EXPECT_NE(text_of(log).find("error: could not write " + dir.string() + "/"), std::string::npos)
+      << text_of(log);
+  EXPECT_NE(text_of(log).find(std::strerror(EFBIG)), std::string::npos) << text_of(log);
+  EXPECT_EQ(temporaries_under(dir), std::vector<std::string>{});
+  expect_whole_snapshots(dir);
+  const auto status = summary_of(dir)["status"].get<std::string>();
+  EXPECT_EQ(status.rfind("failed: could not write " + dir.string() + "/", 0), 0u) << status;
+}
+
+// A resume whose writes fail (here its rewrite of the series, past 4 KB) ends with status 4, not
+// as bad input: series.csv and summary.json stay as they were, no series.csv.tmp is left, and the
+// run resumes once the disk has room.
+TEST(RunEnd, AResumeOnAFullDiskEndsAsAWriteFailureAndResumesLater) {
+  const auto exe = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "snapjump";
+  ASSERT_TRUE(std::filesystem::exists(exe)) << exe << ": build the snapjump target";
+  const auto base = own_folder("snapjump_cli_disk_full_resume");
+  const auto dir = base / "run", log = base / "log.txt";
+  const auto first = run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--end-time",
+                          "5ms", "--quiet", "--output", dir.string()});
+  ASSERT_EQ(first.code, kExitOk) << first.err;
+  const auto series = text_of(dir / "series.csv"), summary = text_of(dir / "summary.json");
+  ASSERT_GT(series.size(), 4u << 10);
+  ASSERT_GT(summary.size(), 4u << 10);
+  const int code = run_with_file_limit(
+      {exe.string(), "run", "--resume", dir.string(), "--end-time", "15ms", "--quiet"}, log,
+      4 << 10);
+  EXPECT_EQ(code, kExitWriteFailed) << text_of(log);
+  EXPECT_NE(text_of(log).find("error: could not write " + (dir / "series.csv.tmp").string()),
+            std::string::npos)
+      << text_of(log);
+  EXPECT_EQ(temporaries_under(dir), std::vector<std::string>{});
+  EXPECT_EQ(text_of(dir / "series.csv"), series);
+  // The summary, larger than the disk's room, says what it said (capped, to be continued).
+  EXPECT_EQ(text_of(dir / "summary.json"), summary);
+  const auto later = run({"run", "--resume", dir.string(), "--end-time", "15ms", "--quiet"});
+  EXPECT_EQ(later.code, kExitOk) << later.err;
+}
+
 }  // namespace
 }  // namespace snapjump::app

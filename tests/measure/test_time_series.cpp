@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "config/files.hpp"
 #include "config/units.hpp"
 #include "measure/time_series.hpp"
 
@@ -177,8 +178,17 @@ TEST(CsvWriter, SameTextAsWriteCsv) {
   EXPECT_EQ(a.str(), b.str());
 }
 
+// A file that cannot be written is a write failure (the command line's status 4), not bad data.
 TEST(CsvWriter, CannotCreate) {
-  EXPECT_THROW(CsvWriter("/nonexistent-dir/x/run.csv", {"t", "F"}), SeriesError);
+  try {
+    CsvWriter("/nonexistent-dir/x/run.csv", {"t", "F"});
+    ADD_FAILURE() << "no error";
+  } catch (const text::WriteFailed& e) {
+    EXPECT_EQ(e.path(), "/nonexistent-dir/x/run.csv");
+    EXPECT_NE(std::string(e.what()).find("could not write /nonexistent-dir/x/run.csv"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // --- Malformed input: each class has its message, naming file, line and column. -----------------
