@@ -213,155 +213,187 @@ constexpr double kGapIntervals = 5.0;
 // A column must cover this fraction of the force's time span to be resampled onto its clock.
 constexpr double kMinCoverage = 0.5;
 
-}  // namespace
+// The header as read: its columns, the contact column's position and the header's line.
+struct Header {
+  std::vector<HeaderColumn> columns;
+  std::optional<std::size_t> contact_col;
+  std::size_t line = 0;
+};
 
-TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
-                                const units::UnitParser& parser, const ReadOptions& options) {
-  const std::string csv{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  return read_csv(std::string_view(csv), source, parser, options);
+// The header's columns as excerpts, for messages that list them.
+std::string listed(const Header& h) {
+  std::vector<std::string> have;
+  for (const auto& c : h.columns) have.push_back(text::excerpt(c.text));
+  return fmt::format("{}", fmt::join(have, ", "));
 }
 
-TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
-                                const units::UnitParser& parser, const ReadOptions& options) {
-  const char sep = text::detect_separator(csv);
-  text::CsvReader reader(csv, sep);
-  text::CsvRecord record;
-  std::size_t line_no = 0;
-  const auto at = [&] { return fmt::format("{}:{}", source, line_no); };
+// Every column mapping names a column of the header and every unit given by option one the
+// record has; the time and the force are there.
+void check_header(const Header& h, std::string_view at, const ReadOptions& options) {
+  for (const auto& mapping : options.columns) {
+    const auto& [to, from] = mapping;
+    const auto wanted = trim(from);
+    const bool found = std::any_of(h.columns.begin(), h.columns.end(),
+                                   [wanted](const HeaderColumn& c) { return c.text == wanted; });
+    if (!found) {
+      throw SeriesError(fmt::format("{}: the column mapping {}=\"{}\" names no column; it has: {}",
+                                    at, to, text::excerpt(from), listed(h)));
+    }
+  }
+  for (const auto& unit : options.units) {
+    const std::string& col = unit.first;
+    const bool found = std::any_of(h.columns.begin(), h.columns.end(),
+                                   [&col](const HeaderColumn& c) { return c.name == col; });
+    if (!found) {
+      throw SeriesError(fmt::format(
+          "{}: a unit is given for the column '{}', which the record has not", at, col));
+    }
+  }
+  const auto require = [&](std::string_view name, std::string_view what) {
+    for (const auto& c : h.columns) {
+      if (c.name == name) return;
+    }
+    throw SeriesError(fmt::format(
+        "{}: the header has no '{}' column ({}, required); it has: {} (name it with a column "
+        "mapping, e.g. --column {}=\"Time (s)\")",
+        at, name, what, listed(h), name));
+  };
+  require(kTime, "time");
+  require(kForce, "the plate reaction force");
+}
 
-  // The header: the first record (comments and blank lines are no records).
+// The header: the first record (comments and blank lines are no records).
+Header read_header(text::CsvReader& reader, std::string_view source,
+                   const units::UnitParser& parser, const ReadOptions& options,
+                   std::vector<std::string>& notes) {
+  text::CsvRecord record;
   if (!reader.next<SeriesError>(record, source)) {
     throw SeriesError(fmt::format(
         "{}: no header line; the first line that is not a '#' comment names the columns, e.g. "
         "\"t [ms],F [N],z [mm]\"",
         source));
   }
-  line_no = record.line;
-  const bool decimal_comma = sep != ',';
-  const auto header_cells = std::move(record.cells);
-  std::vector<HeaderColumn> header;
-  std::optional<std::size_t> contact_col;
-  std::vector<std::string> notes;
-  for (std::size_t k = 0; k < header_cells.size(); ++k) {
-    auto c = parse_header_cell(header_cells[k], at(), k + 1, parser, options);
+  Header h;
+  h.line = record.line;
+  const auto at = fmt::format("{}:{}", source, h.line);
+  for (std::size_t k = 0; k < record.cells.size(); ++k) {
+    auto c = parse_header_cell(record.cells[k], at, k + 1, parser, options);
     if (c.name.empty()) {
       notes.push_back(fmt::format("column {} has no name (an index column?): skipped", k + 1));
     }
-    for (std::size_t j = 0; j < header.size() && !c.name.empty(); ++j) {
-      if (header[j].name == c.name) {
+    for (std::size_t j = 0; j < h.columns.size() && !c.name.empty(); ++j) {
+      if (h.columns[j].name == c.name) {
         throw SeriesError(fmt::format("{}: column {} '{}': the name '{}' is also column {} '{}'",
-                                      at(), k + 1, text::excerpt(c.text), text::excerpt(c.name),
-                                      j + 1, text::excerpt(header[j].text)));
+                                      at, k + 1, text::excerpt(c.text), text::excerpt(c.name),
+                                      j + 1, text::excerpt(h.columns[j].text)));
       }
     }
-    if (c.is_contact) contact_col = k;
-    header.push_back(std::move(c));
+    if (c.is_contact) h.contact_col = k;
+    h.columns.push_back(std::move(c));
   }
-  for (const auto& mapping : options.columns) {
-    const auto& [to, from] = mapping;
-    const auto wanted = trim(from);
-    const bool found = std::any_of(header.begin(), header.end(),
-                                   [wanted](const HeaderColumn& h) { return h.text == wanted; });
-    if (!found) {
-      std::vector<std::string> have;
-      for (const auto& h : header) have.push_back(text::excerpt(h.text));
-      throw SeriesError(fmt::format("{}: the column mapping {}=\"{}\" names no column; it has: {}",
-                                    at(), to, from, fmt::join(have, ", ")));
-    }
-  }
-  for (const auto& unit : options.units) {
-    const std::string& col = unit.first;
-    const bool found = std::any_of(header.begin(), header.end(),
-                                   [&col](const HeaderColumn& h) { return h.name == col; });
-    if (!found) {
-      throw SeriesError(fmt::format(
-          "{}: a unit is given for the column '{}', which the record has not", at(), col));
-    }
-  }
-  const auto require = [&](std::string_view name, std::string_view what) {
-    for (const auto& h : header) {
-      if (h.name == name) return;
-    }
-    std::vector<std::string> have;
-    for (const auto& h : header) have.push_back(text::excerpt(h.text));
-    throw SeriesError(fmt::format(
-        "{}: the header has no '{}' column ({}, required); it has: {} (name it with a column "
-        "mapping, e.g. --column {}=\"Time (s)\")",
-        at(), name, what, fmt::join(have, ", "), name));
-  };
-  require(kTime, "time");
-  require(kForce, "the plate reaction force");
+  check_header(h, at, options);
+  return h;
+}
 
+// The numeric columns (neither skipped nor the contact state): their names, their positions in
+// the header, and which of them are the time and the force.
+struct Layout {
   std::vector<std::string> names;
-  std::vector<std::size_t> numeric_cols;  // header position of each numeric column
+  std::vector<std::size_t> header_pos;
   std::size_t time_pos = 0, force_pos = 0;
-  for (std::size_t k = 0; k < header.size(); ++k) {
-    if (header[k].is_contact || header[k].name.empty()) continue;
-    if (header[k].name == kTime) time_pos = names.size();
-    if (header[k].name == kForce) force_pos = names.size();
-    names.push_back(header[k].name);
-    numeric_cols.push_back(k);
-  }
+};
 
-  // The rows as written.
+Layout layout_of(const Header& h) {
+  Layout l;
+  for (std::size_t k = 0; k < h.columns.size(); ++k) {
+    const auto& c = h.columns[k];
+    if (c.is_contact || c.name.empty()) continue;
+    if (c.name == kTime) l.time_pos = l.names.size();
+    if (c.name == kForce) l.force_pos = l.names.size();
+    l.names.push_back(c.name);
+    l.header_pos.push_back(k);
+  }
+  return l;
+}
+
+// The rows as written, which columns held text, and whether any cell was missing.
+struct RawRows {
   std::vector<RawRow> rows;
-  std::vector<char> textual(names.size(), 0);
+  std::vector<char> textual;
   bool gaps_anywhere = false;
-  while (reader.next<SeriesError>(record, source)) {
-    line_no = record.line;
-    const auto& cells = record.cells;
-    if (cells.size() < header.size()) {
-      throw SeriesError(fmt::format(
-          "{}: {} cells, but the header has {} columns (column {} '{}' is missing)", at(),
-          cells.size(), header.size(), cells.size() + 1, text::excerpt(header[cells.size()].text)));
-    }
-    if (cells.size() > header.size()) {
-      throw SeriesError(fmt::format("{}: {} cells, but the header has only {} columns", at(),
-                                    cells.size(), header.size()));
-    }
-    RawRow row;
-    row.line = line_no;
-    row.values.resize(numeric_cols.size());
-    for (std::size_t i = 0; i < numeric_cols.size(); ++i) {
-      const auto k = numeric_cols[i];
-      if (is_missing(cells[k])) {
-        if (i == time_pos) {
-          throw SeriesError(fmt::format("{}: column {} '{}': the time is empty", at(), k + 1,
-                                        text::excerpt(header[k].text)));
-        }
-        gaps_anywhere = true;
-        continue;
-      }
-      const auto v = parse_number(cells[k], decimal_comma);
-      if (!v && !column_dimension(names[i])) {
-        textual[i] = true;  // a column the analysis does not read, holding text: left out
-        continue;
-      }
-      if (!v) {
-        throw SeriesError(fmt::format("{}: column {} '{}': '{}' is not a finite number", at(),
-                                      k + 1, text::excerpt(header[k].text),
-                                      text::excerpt(trim(cells[k]))));
-      }
-      row.values[i] = *v * header[k].to_si;
-    }
-    row.t = *row.values[time_pos];
-    if (contact_col) {
-      if (is_missing(cells[*contact_col])) {
-        gaps_anywhere = true;
-      } else {
-        row.contact = parse_contact_state(cells[*contact_col]);
-        if (!row.contact) {
-          throw SeriesError(fmt::format(
-              "{}: column {} 'contact': '{}' is not a contact state (none, ring or disk)", at(),
-              *contact_col + 1, trim(cells[*contact_col])));
-        }
-      }
-    }
-    rows.push_back(std::move(row));
-  }
+};
 
-  // Rows out of order are sorted (with a note); rows of one time are merged, each column from
-  // the row that has it; two different values of one column at one time are an error.
+// One record's cells into a row (in SI), or an error naming the line and the column.
+RawRow read_row(const std::vector<std::string>& cells, std::string_view source, std::size_t line,
+                const Header& h, const Layout& l, bool decimal_comma, RawRows& raw) {
+  const auto at = [&] { return fmt::format("{}:{}", source, line); };
+  const auto& header = h.columns;
+  if (cells.size() < header.size()) {
+    throw SeriesError(fmt::format(
+        "{}: {} cells, but the header has {} columns (column {} '{}' is missing)", at(),
+        cells.size(), header.size(), cells.size() + 1, text::excerpt(header[cells.size()].text)));
+  }
+  if (cells.size() > header.size()) {
+    throw SeriesError(fmt::format("{}: {} cells, but the header has only {} columns", at(),
+                                  cells.size(), header.size()));
+  }
+  RawRow row;
+  row.values.resize(l.header_pos.size());
+  for (std::size_t i = 0; i < l.header_pos.size(); ++i) {
+    const auto k = l.header_pos[i];
+    if (is_missing(cells[k])) {
+      if (i == l.time_pos) {
+        throw SeriesError(fmt::format("{}: column {} '{}': the time is empty", at(), k + 1,
+                                      text::excerpt(header[k].text)));
+      }
+      raw.gaps_anywhere = true;
+      continue;
+    }
+    const auto v = parse_number(cells[k], decimal_comma);
+    if (!v && !column_dimension(l.names[i])) {
+      raw.textual[i] = true;  // a column the analysis does not read, holding text: left out
+      continue;
+    }
+    if (!v) {
+      throw SeriesError(fmt::format("{}: column {} '{}': '{}' is not a finite number", at(), k + 1,
+                                    text::excerpt(header[k].text), text::excerpt(trim(cells[k]))));
+    }
+    row.values[i] = *v * header[k].to_si;
+  }
+  row.t = *row.values[l.time_pos];
+  if (const auto col = h.contact_col) {
+    if (is_missing(cells[*col])) {
+      raw.gaps_anywhere = true;
+    } else {
+      row.contact = parse_contact_state(cells[*col]);
+      if (!row.contact) {
+        throw SeriesError(
+            fmt::format("{}: column {} 'contact': '{}' is not a contact state (none, ring or disk)",
+                        at(), *col + 1, text::excerpt(trim(cells[*col]))));
+      }
+    }
+  }
+  return row;
+}
+
+RawRows read_rows(text::CsvReader& reader, std::string_view source, const Header& h,
+                  const Layout& l, bool decimal_comma) {
+  RawRows raw;
+  raw.textual.assign(l.names.size(), 0);
+  text::CsvRecord record;
+  while (reader.next<SeriesError>(record, source)) {
+    auto row = read_row(record.cells, source, record.line, h, l, decimal_comma, raw);
+    row.line = record.line;
+    raw.rows.push_back(std::move(row));
+  }
+  return raw;
+}
+
+// Rows out of order are sorted (with a note); rows of one time are merged, each column from the
+// row that has it; two different values of one column at one time are an error.
+std::vector<RawRow> sort_and_merge(std::vector<RawRow> rows, std::string_view source,
+                                   const Header& h, const Layout& l,
+                                   std::vector<std::string>& notes) {
   std::size_t out_of_order = 0;
   for (std::size_t i = 1; i < rows.size(); ++i) out_of_order += rows[i].t < rows[i - 1].t;
   if (out_of_order > 0) {
@@ -386,8 +418,8 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
         throw SeriesError(fmt::format(
             "{}:{}: column '{}': time {} s is also on line {} with another value ({} against {}): "
             "time must increase from row to row",
-            source, r.line, text::excerpt(header[numeric_cols[i]].text), r.t, m.line, *r.values[i],
-            *m.values[i]));
+            source, r.line, text::excerpt(h.columns[l.header_pos[i]].text), r.t, m.line,
+            *r.values[i], *m.values[i]));
       }
       m.values[i] = r.values[i];
     }
@@ -404,166 +436,228 @@ TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
   if (duplicates > 0) {
     notes.push_back(fmt::format("{} rows repeated a time: merged with the row before", duplicates));
   }
+  return merged;
+}
 
-  // One clock, the force plate's: the rows that have F. Every other column is interpolated onto
-  // it linearly between its own samples (the contact state held from its last sample); the record
-  // is cut to the times every kept column covers.
-  std::vector<std::vector<double>> own_t(names.size()), own_v(names.size());
+// Each numeric column's own samples (the rows that have a value of it), and the contact state's.
+struct Samples {
+  std::vector<std::vector<double>> t, v;
   std::vector<double> contact_t;
   std::vector<ContactState> contact_v;
+};
+
+Samples samples_of(const std::vector<RawRow>& merged, std::size_t columns) {
+  Samples s;
+  s.t.resize(columns);
+  s.v.resize(columns);
   for (const auto& r : merged) {
-    for (std::size_t i = 0; i < names.size(); ++i) {
+    for (std::size_t i = 0; i < columns; ++i) {
       if (r.values[i]) {
-        own_t[i].push_back(r.t);
-        own_v[i].push_back(*r.values[i]);
+        s.t[i].push_back(r.t);
+        s.v[i].push_back(*r.values[i]);
       }
     }
     if (r.contact) {
-      contact_t.push_back(r.t);
-      contact_v.push_back(*r.contact);
+      s.contact_t.push_back(r.t);
+      s.contact_v.push_back(*r.contact);
     }
   }
-  const auto& clock = own_t[force_pos];
+  return s;
+}
+
+// What is kept of the record: the columns, the contact state, the gaps found, and the times
+// [lo, hi] of the force's clock that every kept column covers.
+struct Selection {
+  std::vector<bool> keep;
+  bool keep_contact = false;
+  std::vector<Gap> gaps;
+  double lo = 0.0, hi = 0.0;
+};
+
+// Columns that cover less than kMinCoverage of the force's time span are left out; the columns
+// the analysis reads, and the contact state, cut the record to the span they cover.
+void drop_uncovered(const Layout& l, const Samples& s, Selection& sel,
+                    std::vector<std::string>& notes) {
+  const auto& clock = s.t[l.force_pos];
+  const double span = clock.back() - clock.front();
+  const auto covered = [&](const std::vector<double>& ts) {
+    return ts.size() >= 2 && ts.back() - ts.front() >= kMinCoverage * span;
+  };
+  for (std::size_t i = 0; i < l.names.size(); ++i) {
+    if (i == l.time_pos || i == l.force_pos || !sel.keep[i]) continue;
+    const auto& ts = s.t[i];
+    if (!covered(ts)) {
+      sel.keep[i] = false;
+      notes.push_back(fmt::format(
+          "column '{}' has {} values over {:.4g} s, less than half the force's "
+          "{:.4g} s: left out",
+          text::excerpt(l.names[i]), ts.size(), ts.empty() ? 0.0 : ts.back() - ts.front(), span));
+      continue;
+    }
+    // Only the columns the analysis reads cut the record to their time span; another column is
+    // held at its end values beyond it.
+    if (column_dimension(l.names[i])) {
+      sel.lo = std::max(sel.lo, ts.front());
+      sel.hi = std::min(sel.hi, ts.back());
+    }
+  }
+  if (sel.keep_contact && !covered(s.contact_t)) {
+    sel.keep_contact = false;
+    notes.push_back("the contact column covers less than half the force's time: left out");
+  } else if (sel.keep_contact) {
+    sel.lo = std::max(sel.lo, s.contact_t.front());
+  }
+}
+
+// The gaps of the kept columns, and notes on their own clocks, on the cut and on the gaps.
+void note_clocks_and_cut(const Layout& l, const Samples& s, std::string_view source, Selection& sel,
+                         std::vector<std::string>& notes) {
+  const auto& clock = s.t[l.force_pos];
+  std::vector<std::string> resampled;
+  for (std::size_t i = 0; i < l.names.size(); ++i) {
+    if (!sel.keep[i] || i == l.time_pos) continue;
+    const auto& ts = s.t[i];
+    const double dt = median_interval(ts);
+    for (std::size_t j = 1; j < ts.size(); ++j) {
+      if (ts[j] - ts[j - 1] > kGapIntervals * dt)
+        sel.gaps.push_back({l.names[i], ts[j - 1], ts[j]});
+    }
+    if (i != l.force_pos && ts.size() != clock.size()) {
+      resampled.push_back(
+          fmt::format("{} ({:.4g} Hz)", text::excerpt(l.names[i]), dt > 0.0 ? 1.0 / dt : 0.0));
+    }
+  }
+  const double dt_clock = median_interval(clock);
+  if (!resampled.empty()) {
+    notes.push_back(
+        fmt::format("the columns have their own clocks: {} interpolated linearly onto the force's "
+                    "({:.4g} Hz){}",
+                    fmt::join(resampled, ", "), dt_clock > 0.0 ? 1.0 / dt_clock : 0.0,
+                    sel.keep_contact ? "; the contact state held from its last sample" : ""));
+  }
+  if (sel.lo > clock.front() || sel.hi < clock.back()) {
+    const auto from = std::lower_bound(clock.begin(), clock.end(), sel.lo);
+    const auto to = std::upper_bound(clock.begin(), clock.end(), sel.hi);
+    if (from >= to) {
+      throw SeriesError(fmt::format(
+          "{}: no time of the force's clock lies where every column has values ({:.6g} .. {:.6g} "
+          "s)",
+          source, sel.lo, sel.hi));
+    }
+    notes.push_back(fmt::format(
+        "the record is cut to {:.6g} .. {:.6g} s, the times every column covers (the force: "
+        "{:.6g} .. {:.6g} s)",
+        *from, *(to - 1), clock.front(), clock.back()));
+  }
+  for (const auto& g : sel.gaps) {
+    notes.push_back(
+        fmt::format("column '{}' has no values from {:.6g} to {:.6g} s ({:.3g} ms): "
+                    "interpolated across",
+                    text::excerpt(g.column), g.from, g.to, 1e3 * (g.to - g.from)));
+  }
+}
+
+// One clock, the force plate's: the rows that have F. Every other column is interpolated onto it
+// linearly between its own samples (the contact state held from its last sample); the record is
+// cut to the times every kept column covers. Columns of text or without values are left out.
+Selection select(const Layout& l, const Samples& s, const RawRows& raw, bool has_contact,
+                 bool any_rows, std::string_view source, std::vector<std::string>& notes) {
+  const auto& clock = s.t[l.force_pos];
+  Selection sel;
+  sel.keep.assign(l.names.size(), true);
+  for (std::size_t i = 0; i < l.names.size(); ++i) {
+    if (raw.textual[i]) {
+      sel.keep[i] = false;
+      notes.push_back(fmt::format("column '{}' holds text: left out", text::excerpt(l.names[i])));
+    }
+  }
+  sel.keep_contact = has_contact;
+  sel.lo = clock.empty() ? 0.0 : clock.front();
+  sel.hi = clock.empty() ? 0.0 : clock.back();
+  if (raw.gaps_anywhere && clock.size() >= 2) {
+    drop_uncovered(l, s, sel, notes);
+    note_clocks_and_cut(l, s, source, sel, notes);
+  }
+  for (std::size_t i = 0; i < l.names.size(); ++i) {
+    if (sel.keep[i] && i != l.time_pos && i != l.force_pos && any_rows && s.t[i].empty()) {
+      sel.keep[i] = false;
+      notes.push_back(
+          fmt::format("column '{}' has no values: left out", text::excerpt(l.names[i])));
+    }
+  }
+  if (sel.keep_contact && any_rows && s.contact_t.empty()) {
+    sel.keep_contact = false;
+    notes.push_back("the contact column has no values: left out");
+  }
+  return sel;
+}
+
+// The value of a column at time t of the force's clock, from its own samples ts, vs: linear
+// between them, its end value beyond them; `cursor` walks the samples along the clock.
+double value_at(double t, const std::vector<double>& ts, const std::vector<double>& vs,
+                std::size_t& cursor) {
+  auto& c = cursor;
+  while (c + 1 < ts.size() && ts[c + 1] <= t) ++c;
+  if (ts[c] == t || c + 1 == ts.size()) return vs[c];
+  const double s = (t - ts[c]) / (ts[c + 1] - ts[c]);
+  return vs[c] + s * (vs[c + 1] - vs[c]);
+}
+
+}  // namespace
+
+TimeSeries TimeSeries::read_csv(std::istream& in, std::string_view source,
+                                const units::UnitParser& parser, const ReadOptions& options) {
+  const std::string csv{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return read_csv(std::string_view(csv), source, parser, options);
+}
+
+TimeSeries TimeSeries::read_csv(std::string_view csv, std::string_view source,
+                                const units::UnitParser& parser, const ReadOptions& options) {
+  const char sep = text::detect_separator(csv);
+  text::CsvReader reader(csv, sep);
+  std::vector<std::string> notes;
+  const auto header = read_header(reader, source, parser, options, notes);
+  const auto l = layout_of(header);
+  auto raw = read_rows(reader, source, header, l, sep != ',');
+  const auto merged = sort_and_merge(std::move(raw.rows), source, header, l, notes);
+  const auto s = samples_of(merged, l.names.size());
+  const auto& clock = s.t[l.force_pos];
   if (merged.size() > 0 && clock.empty()) {
     throw SeriesError(fmt::format("{}: no row has a value of F", source));
   }
-  std::vector<bool> keep(names.size(), true);
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (textual[i]) {
-      keep[i] = false;
-      notes.push_back(fmt::format("column '{}' holds text: left out", names[i]));
-    }
-  }
-  bool keep_contact = contact_col.has_value();
-  std::vector<Gap> gaps;
-  double lo = clock.empty() ? 0.0 : clock.front();
-  double hi = clock.empty() ? 0.0 : clock.back();
-  if (gaps_anywhere && clock.size() >= 2) {
-    const double span = clock.back() - clock.front();
-    const auto covered = [&](const std::vector<double>& ts) {
-      return ts.size() >= 2 && ts.back() - ts.front() >= kMinCoverage * span;
-    };
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (i == time_pos || i == force_pos || !keep[i]) continue;
-      if (!covered(own_t[i])) {
-        keep[i] = false;
-        notes.push_back(
-            fmt::format("column '{}' has {} values over {:.4g} s, less than half the force's "
-                        "{:.4g} s: left out",
-                        names[i], own_t[i].size(),
-                        own_t[i].empty() ? 0.0 : own_t[i].back() - own_t[i].front(), span));
-        continue;
-      }
-      // Only the columns the analysis reads cut the record to their time span; another column
-      // is held at its end values beyond it.
-      if (column_dimension(names[i])) {
-        lo = std::max(lo, own_t[i].front());
-        hi = std::min(hi, own_t[i].back());
-      }
-    }
-    if (keep_contact && !covered(contact_t)) {
-      keep_contact = false;
-      notes.push_back("the contact column covers less than half the force's time: left out");
-    } else if (keep_contact) {
-      lo = std::max(lo, contact_t.front());
-    }
-    std::vector<std::string> resampled;
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (!keep[i] || i == time_pos) continue;
-      const double dt = median_interval(own_t[i]);
-      for (std::size_t j = 1; j < own_t[i].size(); ++j) {
-        if (own_t[i][j] - own_t[i][j - 1] > kGapIntervals * dt) {
-          gaps.push_back({names[i], own_t[i][j - 1], own_t[i][j]});
-        }
-      }
-      if (i != force_pos && own_t[i].size() != clock.size()) {
-        resampled.push_back(fmt::format("{} ({:.4g} Hz)", names[i], dt > 0.0 ? 1.0 / dt : 0.0));
-      }
-    }
-    const double dt_clock = median_interval(clock);
-    if (!resampled.empty()) {
-      notes.push_back(fmt::format(
-          "the columns have their own clocks: {} interpolated linearly onto the force's "
-          "({:.4g} Hz){}",
-          fmt::join(resampled, ", "), dt_clock > 0.0 ? 1.0 / dt_clock : 0.0,
-          keep_contact ? "; the contact state held from its last sample" : ""));
-    }
-    if (lo > clock.front() || hi < clock.back()) {
-      const auto from = std::lower_bound(clock.begin(), clock.end(), lo);
-      const auto to = std::upper_bound(clock.begin(), clock.end(), hi);
-      if (from >= to) {
-        throw SeriesError(fmt::format(
-            "{}: no time of the force's clock lies where every column has values ({:.6g} .. {:.6g} "
-            "s)",
-            source, lo, hi));
-      }
-      notes.push_back(fmt::format(
-          "the record is cut to {:.6g} .. {:.6g} s, the times every column covers (the force: "
-          "{:.6g} .. {:.6g} s)",
-          *from, *(to - 1), clock.front(), clock.back()));
-    }
-    for (const auto& g : gaps) {
-      notes.push_back(
-          fmt::format("column '{}' has no values from {:.6g} to {:.6g} s ({:.3g} ms): "
-                      "interpolated across",
-                      g.column, g.from, g.to, 1e3 * (g.to - g.from)));
-    }
-  }
+  auto sel = select(l, s, raw, header.contact_col.has_value(), !merged.empty(), source, notes);
 
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (keep[i] && i != time_pos && i != force_pos && !merged.empty() && own_t[i].empty()) {
-      keep[i] = false;
-      notes.push_back(fmt::format("column '{}' has no values: left out", names[i]));
-    }
-  }
-  if (keep_contact && !merged.empty() && contact_t.empty()) {
-    keep_contact = false;
-    notes.push_back("the contact column has no values: left out");
-  }
   std::vector<std::string> kept_names;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (keep[i]) kept_names.push_back(names[i]);
+  for (std::size_t i = 0; i < l.names.size(); ++i) {
+    if (sel.keep[i]) kept_names.push_back(l.names[i]);
   }
-  TimeSeries series(kept_names, keep_contact);
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    if (keep[i] && i != time_pos)
-      series.own_intervals_.emplace_back(names[i], median_interval(own_t[i]));
+  TimeSeries series(kept_names, sel.keep_contact);
+  for (std::size_t i = 0; i < l.names.size(); ++i) {
+    if (sel.keep[i] && i != l.time_pos)
+      series.own_intervals_.emplace_back(l.names[i], median_interval(s.t[i]));
   }
-  if (keep_contact)
-    series.own_intervals_.emplace_back(std::string(kContact), median_interval(contact_t));
+  if (sel.keep_contact)
+    series.own_intervals_.emplace_back(std::string(kContact), median_interval(s.contact_t));
   series.notes_ = std::move(notes);
-  series.gaps_ = std::move(gaps);
+  series.gaps_ = std::move(sel.gaps);
   series.reserve(clock.size());
   std::vector<double> values;
-  std::vector<std::size_t> cursor(names.size(), 0);
+  std::vector<std::size_t> cursor(l.names.size(), 0);
   std::size_t contact_cursor = 0;
   for (const double t : clock) {
-    if (t < lo || t > hi) continue;
+    if (t < sel.lo || t > sel.hi) continue;
     values.clear();
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      if (!keep[i]) continue;
-      if (i == time_pos) {
-        values.push_back(t);
-        continue;
-      }
-      const auto& ts = own_t[i];
-      const auto& vs = own_v[i];
-      auto& c = cursor[i];
-      while (c + 1 < ts.size() && ts[c + 1] <= t) ++c;
-      if (ts[c] == t || c + 1 == ts.size()) {
-        values.push_back(vs[c]);
-      } else {
-        const double s = (t - ts[c]) / (ts[c + 1] - ts[c]);
-        values.push_back(vs[c] + s * (vs[c + 1] - vs[c]));
-      }
+    for (std::size_t i = 0; i < l.names.size(); ++i) {
+      if (!sel.keep[i]) continue;
+      values.push_back(i == l.time_pos ? t : value_at(t, s.t[i], s.v[i], cursor[i]));
     }
-    if (keep_contact) {
-      while (contact_cursor + 1 < contact_t.size() && contact_t[contact_cursor + 1] <= t) {
+    if (sel.keep_contact) {
+      while (contact_cursor + 1 < s.contact_t.size() && s.contact_t[contact_cursor + 1] <= t) {
         ++contact_cursor;
       }
       // Before the state's first sample there is nothing to hold: the record is cut there
       // (lo above), except on the single-clock path where every row has its state.
-      series.append(values, contact_v[contact_cursor]);
+      series.append(values, s.contact_v[contact_cursor]);
     } else {
       series.append(values, std::nullopt);
     }
