@@ -257,9 +257,12 @@ void read_settings(const fs::path& file, const std::string& name, const toml::ta
   for_each_leaf(
       t, [&](const std::string& key, const toml::node& n, const toml::source_region& where) {
         check_key(file, where, key);
-        for (const auto& v : spec.varied_keys) {
-          if (v == key)
-            throw SweepError(fmt::format("{}: {} is varied twice", at(file, where), key));
+        for (const auto* varied : {&lists.vary, &lists.zip}) {
+          for (const auto& values : *varied) {
+            if (values.front().key == key) {
+              throw SweepError(fmt::format("{}: {} is varied twice", at(file, where), key));
+            }
+          }
         }
         if (name == "set") {
           const auto text = scalar_text(n);

@@ -233,6 +233,12 @@ TEST(SweepSpec, MistakesNameTheKeyAndTheLine) {
             std::string::npos);
   EXPECT_NE(error_of([] { (void)parse_spec("[vary\n", "s.toml"); }).find("s.toml:1"),
             std::string::npos);
+  // A key in [vary] and in [zip] is refused where it comes the second time.
+  EXPECT_NE(error_of([] {
+              (void)parse_spec("[vary]\nfriction.mu = [0.1]\n[zip]\nfriction.mu = [0.2, 0.3]\n",
+                               "s.toml");
+            }).find("s.toml:4: friction.mu is varied twice"),
+            std::string::npos);
 }
 
 TEST(SweepSpec, AnErrorQuotesAShortEscapedExcerptOfTheFile) {
