@@ -20,6 +20,7 @@
 #include "plot/style.hpp"
 #include "plot/table.hpp"
 #include "theory/scaling.hpp"
+#include "theory/snap_boundary.hpp"
 
 namespace snapjump::plot {
 namespace {
@@ -343,27 +344,6 @@ std::string flight(const Table& t, const fs::path& table, FigureResult& result,
 
 // --- phase diagram, Fig. 3(c) ---
 
-// The net weight at which the theory's snap margin U / (mg H_l) (its lower or upper end) is 1,
-// by bisection in log mg; nothing when there is none (H_l <= 0: every weight snaps).
-std::optional<double> snap_boundary_weight(config::Case c, bool lower_end,
-                                           const theory::ContactConstants& k) {
-  const auto margin = [&](double mg) {
-    c.popper.net_weight = mg;
-    const auto p = theory::predict(c, k);
-    return lower_end ? p.snap_margin.lo : p.snap_margin.hi;
-  };
-  double a = c.popper.net_weight > 0.0 ? c.popper.net_weight : 1.0;
-  double b = a;
-  for (int i = 0; i < 60 && !(margin(a) > 1.0); ++i) a /= 10.0;
-  for (int i = 0; i < 60 && !(margin(b) < 1.0); ++i) b *= 10.0;
-  if (!(margin(a) > 1.0) || !(margin(b) < 1.0)) return std::nullopt;
-  for (int i = 0; i < 200 && b / a > 1.0 + 1e-12; ++i) {
-    const double m = std::sqrt(a * b);
-    (margin(m) > 1.0 ? a : b) = m;
-  }
-  return std::sqrt(a * b);
-}
-
 // The base case of the Snap / No snap boundary: the first run of the table with a case file that
 // loads, the one its run wrote (runs/<run>/case.toml) or else the one the sweep planned
 // (cases/<run>.toml).
@@ -390,24 +370,25 @@ std::optional<std::pair<config::Case, fs::path>> first_case(const Table& t, cons
   return std::nullopt;
 }
 
-std::string phase(const Table& t, const fs::path& table, FigureResult& result,
-                  const FigureOptions& options) {
-  t.require({"run", "outcome", "h_over_R", "Eh2_over_mg", "alpha_F_lo", "alpha_F_hi"});
-  struct Group {
-    const char* key;  // outcome text, lower case; "" for the rest
-    const char* title;
-    int point_type;
-    std::string_view colour;
-    Rows rows;
+// The points of the phase diagram, one group per outcome.
+struct PhaseGroup {
+  const char* key;  // outcome text, lower case; "" for the rest
+  const char* title;
+  int point_type;
+  std::string_view colour;
+  Rows rows;
+};
+using PhaseGroups = std::array<PhaseGroup, 5>;
+
+// The rows with positive h/R and E h^2 / (m g), by outcome, and their extents.
+PhaseGroups phase_groups(const Table& t, Extent& xs, Extent& ys) {
+  PhaseGroups groups{
+      PhaseGroup{"jump", "simulation: Jump", 6, style::kBlue, {}},
+      PhaseGroup{"snap", "simulation: Snap", 8, style::kOrange, {}},
+      PhaseGroup{"no snap", "simulation: No snap", 4, style::kRed, {}},
+      PhaseGroup{"thrown", "simulation: Thrown", 12, "#7a3db8", {}},
+      PhaseGroup{"", "failed / no outcome", 2, "#a0a0a0", {}},
   };
-  std::array<Group, 5> groups{
-      Group{"jump", "simulation: Jump", 6, style::kBlue, {}},
-      Group{"snap", "simulation: Snap", 8, style::kOrange, {}},
-      Group{"no snap", "simulation: No snap", 4, style::kRed, {}},
-      Group{"thrown", "simulation: Thrown", 12, "#7a3db8", {}},
-      Group{"", "failed / no outcome", 2, "#a0a0a0", {}},
-  };
-  Extent xs, ys;
   for (std::size_t r = 0; r < t.rows(); ++r) {
     const auto x = t.number(r, "h_over_R");
     const auto y = t.number(r, "Eh2_over_mg");
@@ -425,39 +406,41 @@ std::string phase(const Table& t, const fs::path& table, FigureResult& result,
     throw PlotInputError(fmt::format(
         "{}: no row has positive values in both 'h_over_R' and 'Eh2_over_mg'", t.source()));
   }
-  auto xr = style::padded(xs.lo, xs.hi, false, 0.1);
-  if (!(xr.lo > 0.0)) xr.lo = 0.5 * xs.lo;
-  xr.hi = std::min(xr.hi, 0.999);
+  return groups;
+}
 
-  // The Jump / Snap boundary F*/mg = 1, i.e. E h^2 / (m g) = 1 / (alpha_F h / R).
-  const auto aF = first_bounds(t, "alpha_F_lo", "alpha_F_hi");
-  // The Snap / No snap boundary U / (mg H_l) = 1, from the theory at the first run's case.
+// The Snap / No snap boundary U / (mg H_l) = 1 over the x range, from the theory at the first
+// run's case (theory::snap_boundary_weight): rows h/R, E h^2 / (m g) at the upper and at the lower
+// end of the margin. `snap_case` names the case file used, empty when there is none.
+Rows snap_boundary_rows(const Table& t, const fs::path& table, style::Span xr,
+                        std::vector<std::string>& notes, std::string& snap_case) {
   Rows snap;
-  std::string snap_case;
   const auto dir = table.parent_path().empty() ? fs::path(".") : table.parent_path();
-  if (auto base = first_case(t, dir, result.notes)) {
-    const auto& k = theory::contact_constants();
-    auto c = base->first;
-    snap_case = base->second.string();
-    const int n = 60;
-    for (int i = 0; i < n; ++i) {
-      const double x = xr.lo + (xr.hi - xr.lo) * i / (n - 1);
-      c.shell.h = x * c.shell.R;
-      const auto lo = snap_boundary_weight(c, true, k);
-      const auto hi = snap_boundary_weight(c, false, k);
-      const double scale = c.material.E * c.shell.h * c.shell.h;
-      if (lo && hi) {
-        snap.push_back({x, scale / std::max(*lo, *hi), scale / std::min(*lo, *hi)});
-      }
-    }
-    if (snap.empty()) {
-      result.notes.push_back(fmt::format(
-          "the theory has no Snap / No snap boundary over h/R = {:.3g} .. {:.3g} at the case of {}",
-          xr.lo, xr.hi, snap_case));
-    }
+  auto base = first_case(t, dir, notes);
+  if (!base) return snap;
+  const auto& k = theory::contact_constants();
+  auto c = base->first;
+  snap_case = base->second.string();
+  const int n = 60;
+  for (int i = 0; i < n; ++i) {
+    const double x = xr.lo + (xr.hi - xr.lo) * i / (n - 1);
+    c.shell.h = x * c.shell.R;
+    const auto lo = theory::snap_boundary_weight(c, theory::SnapMarginEnd::Lower, k);
+    const auto hi = theory::snap_boundary_weight(c, theory::SnapMarginEnd::Upper, k);
+    const double scale = c.material.E * c.shell.h * c.shell.h;
+    if (lo && hi) snap.push_back({x, scale / std::max(*lo, *hi), scale / std::min(*lo, *hi)});
   }
+  if (snap.empty()) {
+    notes.push_back(fmt::format(
+        "the theory has no Snap / No snap boundary over h/R = {:.3g} .. {:.3g} at the case of {}",
+        xr.lo, xr.hi, snap_case));
+  }
+  return snap;
+}
 
-  // y range: the data, and the boundaries within a factor 30 of it.
+// The y range: the data, and the boundaries within a factor 30 of it.
+style::Span phase_y_range(const Extent& ys, const std::optional<std::pair<double, double>>& aF,
+                          style::Span xr, const Rows& snap) {
   Extent yr = ys;
   const auto clip = [&](double v) {
     if (v > 0.0 && std::isfinite(v)) yr.add(std::clamp(v, ys.lo / 30.0, ys.hi * 30.0));
@@ -472,7 +455,89 @@ std::string phase(const Table& t, const fs::path& table, FigureResult& result,
     clip(s[1]);
     clip(s[2]);
   }
-  const auto yrange = style::padded(yr.lo, yr.hi, true, 0.1);
+  return style::padded(yr.lo, yr.hi, true, 0.1);
+}
+
+// The regions' names, where they fit: at 80 % of the x range, above both boundaries (Jump),
+// between them (Snap), below the Snap / No snap boundary (No snap).
+std::string region_labels(const std::optional<std::pair<double, double>>& aF, const Rows& snap,
+                          style::Span xr, style::Span yrange) {
+  std::string gp;
+  const double x = xr.lo + 0.8 * (xr.hi - xr.lo);
+  std::optional<double> jump_hi, jump_lo, snap_hi, snap_lo;
+  if (aF) {
+    jump_hi = 1.0 / (aF->first * x);
+    jump_lo = 1.0 / (aF->second * x);
+  }
+  if (!snap.empty()) {
+    const auto near = std::min_element(snap.begin(), snap.end(), [&](const auto& a, const auto& b) {
+      return std::abs(a[0] - x) < std::abs(b[0] - x);
+    });
+    snap_lo = (*near)[1];
+    snap_hi = (*near)[2];
+  }
+  const auto label = [&](const char* text, double y) {
+    if (y > yrange.lo && y < yrange.hi) {
+      gp += fmt::format("set label '{}' at {}, {} center font ',15' tc rgb '#505050' front\n", text,
+                        number(x), number(y));
+    }
+  };
+  const double top = std::max(jump_hi.value_or(0.0), snap_hi.value_or(0.0));
+  if (top > 0.0) label("Jump", top * std::pow(yrange.hi / top, 0.5));
+  if (jump_lo && snap_hi && *snap_hi < *jump_lo) label("Snap", std::sqrt(*snap_hi * *jump_lo));
+  if (snap_lo) label("No snap", *snap_lo * std::pow(yrange.lo / *snap_lo, 0.5));
+  return gp;
+}
+
+// The plot command: the Jump / Snap band, the Snap / No snap band, the points.
+std::string phase_plot(const std::optional<std::pair<double, double>>& aF, const Rows& snap,
+                       const PhaseGroups& groups, FigureResult& result) {
+  std::vector<std::string> parts;
+  if (aF) {
+    parts.push_back(fmt::format(
+        "'+' using 1:(1/({}*$1)):(1/({}*$1)) with filledcurves {} title 'theory: Jump / Snap, "
+        "F*/mg = 1'",
+        number(aF->second), number(aF->first), style::kBand));
+    for (const double a : {aF->first, aF->second}) {
+      parts.push_back(fmt::format(
+          "'+' using 1:(1/({}*$1)) with lines dt 2 lw 1.5 lc rgb 'black' notitle", number(a)));
+    }
+  } else {
+    result.notes.push_back("no row has alpha_F_lo and alpha_F_hi: no Jump / Snap boundary");
+  }
+  if (!snap.empty()) {
+    parts.push_back(
+        "$snap using 1:2:3 with filledcurves fc rgb '#5a5a5a' fs transparent solid 0.3 noborder "
+        "title 'theory: Snap / No snap, U/(mg H_l) = 1'");
+    parts.push_back("$snap using 1:2 with lines dt 4 lw 1.5 lc rgb '#303030' notitle");
+    parts.push_back("$snap using 1:3 with lines dt 4 lw 1.5 lc rgb '#303030' notitle");
+  }
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (groups[g].rows.empty()) continue;
+    parts.push_back(fmt::format("$group{} using 1:2 {} title '{}'", g,
+                                style::points(groups[g].colour, groups[g].point_type, 1.8),
+                                groups[g].title));
+  }
+  std::string plot = "plot ";
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    plot += (i > 0 ? ", \\\n     " : "") + parts[i];
+  }
+  return plot + "\n";
+}
+
+std::string phase(const Table& t, const fs::path& table, FigureResult& result,
+                  const FigureOptions& options) {
+  t.require({"run", "outcome", "h_over_R", "Eh2_over_mg", "alpha_F_lo", "alpha_F_hi"});
+  Extent xs, ys;
+  const auto groups = phase_groups(t, xs, ys);
+  auto xr = style::padded(xs.lo, xs.hi, false, 0.1);
+  if (!(xr.lo > 0.0)) xr.lo = 0.5 * xs.lo;
+  xr.hi = std::min(xr.hi, 0.999);
+  // The Jump / Snap boundary F*/mg = 1, i.e. E h^2 / (m g) = 1 / (alpha_F h / R).
+  const auto aF = first_bounds(t, "alpha_F_lo", "alpha_F_hi");
+  std::string snap_case;
+  const Rows snap = snap_boundary_rows(t, table, xr, result.notes, snap_case);
+  const auto yrange = phase_y_range(ys, aF, xr, snap);
 
   std::string gp =
       header("Fig. 3(c) of the paper: the Jump / Snap / No snap diagram", table, result);
@@ -507,64 +572,8 @@ std::string phase(const Table& t, const fs::path& table, FigureResult& result,
       "set bmargin 8\nset key below center horizontal maxcols 2 Left reverse box lc rgb "
       "'#c0c0c0' font ',13'\n";
   gp += "set grid lc rgb '#e0e0e0'\n";
-  // The regions' names, where they fit: at 80 % of the x range, above both boundaries (Jump),
-  // between them (Snap), below the Snap / No snap boundary (No snap).
-  {
-    const double x = xr.lo + 0.8 * (xr.hi - xr.lo);
-    std::optional<double> jump_hi, jump_lo, snap_hi, snap_lo;
-    if (aF) {
-      jump_hi = 1.0 / (aF->first * x);
-      jump_lo = 1.0 / (aF->second * x);
-    }
-    if (!snap.empty()) {
-      const auto near = std::min_element(
-          snap.begin(), snap.end(),
-          [&](const auto& a, const auto& b) { return std::abs(a[0] - x) < std::abs(b[0] - x); });
-      snap_lo = (*near)[1];
-      snap_hi = (*near)[2];
-    }
-    const auto label = [&](const char* text, double y) {
-      if (y > yrange.lo && y < yrange.hi) {
-        gp += fmt::format("set label '{}' at {}, {} center font ',15' tc rgb '#505050' front\n",
-                          text, number(x), number(y));
-      }
-    };
-    const double top = std::max(jump_hi.value_or(0.0), snap_hi.value_or(0.0));
-    if (top > 0.0) label("Jump", top * std::pow(yrange.hi / top, 0.5));
-    if (jump_lo && snap_hi && *snap_hi < *jump_lo) label("Snap", std::sqrt(*snap_hi * *jump_lo));
-    if (snap_lo) label("No snap", *snap_lo * std::pow(yrange.lo / *snap_lo, 0.5));
-  }
-  std::vector<std::string> parts;
-  if (aF) {
-    parts.push_back(fmt::format(
-        "'+' using 1:(1/({}*$1)):(1/({}*$1)) with filledcurves {} title 'theory: Jump / Snap, "
-        "F*/mg = 1'",
-        number(aF->second), number(aF->first), style::kBand));
-    for (const double a : {aF->first, aF->second}) {
-      parts.push_back(fmt::format(
-          "'+' using 1:(1/({}*$1)) with lines dt 2 lw 1.5 lc rgb 'black' notitle", number(a)));
-    }
-  } else {
-    result.notes.push_back("no row has alpha_F_lo and alpha_F_hi: no Jump / Snap boundary");
-  }
-  if (!snap.empty()) {
-    parts.push_back(
-        "$snap using 1:2:3 with filledcurves fc rgb '#5a5a5a' fs transparent solid 0.3 noborder "
-        "title 'theory: Snap / No snap, U/(mg H_l) = 1'");
-    parts.push_back("$snap using 1:2 with lines dt 4 lw 1.5 lc rgb '#303030' notitle");
-    parts.push_back("$snap using 1:3 with lines dt 4 lw 1.5 lc rgb '#303030' notitle");
-  }
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    if (groups[g].rows.empty()) continue;
-    parts.push_back(fmt::format("$group{} using 1:2 {} title '{}'", g,
-                                style::points(groups[g].colour, groups[g].point_type, 1.8),
-                                groups[g].title));
-  }
-  std::string plot = "plot ";
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    plot += (i > 0 ? ", \\\n     " : "") + parts[i];
-  }
-  return gp + plot + "\n";
+  gp += region_labels(aF, snap, xr, yrange);
+  return gp + phase_plot(aF, snap, groups, result);
 }
 
 // --- friction, Fig. 4 ---
