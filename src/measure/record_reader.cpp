@@ -88,6 +88,23 @@ struct HeaderColumn {
   bool is_contact = false;
 };
 
+// "t_ms", "F_N", "z_mm": a known name, an underscore and a unit of the right dimension; the
+// name and the unit, or nothing.
+std::optional<std::pair<std::string, std::string>> with_unit_suffix(
+    std::string_view name, const units::UnitParser& parser) {
+  const auto us = name.rfind('_');
+  if (us == std::string_view::npos || us == 0) return std::nullopt;
+  const auto base = canonical(name.substr(0, us));
+  const auto dim = base ? column_dimension(*base) : std::nullopt;
+  if (!dim) return std::nullopt;
+  try {
+    (void)parser.to_si(1.0, name.substr(us + 1), *dim);
+  } catch (const units::UnitError&) {
+    return std::nullopt;  // not a unit: an unknown column
+  }
+  return std::pair{*base, std::string(name.substr(us + 1))};
+}
+
 HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::size_t k,
                                const units::UnitParser& parser, const ReadOptions& options) {
   HeaderColumn c;
@@ -141,21 +158,10 @@ HeaderColumn parse_header_cell(std::string_view cell, std::string_view at, std::
     mapped = standard;
   }
   std::optional<std::string> known = mapped ? mapped : canonical(name);
-  // "t_ms", "F_N", "z_mm": a known name, an underscore and a unit of the right dimension.
   if (!known && !unit) {
-    const auto us = name.rfind('_');
-    if (us != std::string_view::npos && us > 0) {
-      const auto base = canonical(name.substr(0, us));
-      const auto dim = base ? column_dimension(*base) : std::nullopt;
-      if (dim) {
-        try {
-          (void)parser.to_si(1.0, name.substr(us + 1), *dim);
-          known = base;
-          unit = std::string(name.substr(us + 1));
-        } catch (const units::UnitError&) {
-          // not a unit: an unknown column
-        }
-      }
+    if (auto split = with_unit_suffix(name, parser)) {
+      known = std::move(split->first);
+      unit = std::move(split->second);
     }
   }
   if (!known) {
