@@ -12,6 +12,8 @@
 #include <cstring>
 #include <optional>
 
+#include "config/text.hpp"
+
 namespace snapjump::io {
 namespace {
 
@@ -29,7 +31,9 @@ LockFileRefused refused(const fs::path& path) {
   std::string what = "is not a regular file";
   if (fs::is_symlink(status)) {
     const auto target = fs::read_symlink(path, ec);
-    what = fmt::format("is a symbolic link{}", ec ? "" : " (to " + target.string() + ")");
+    // The link's target is the file system's text: quoted as an excerpt.
+    what = fmt::format("is a symbolic link{}",
+                       ec ? "" : fmt::format(" (to {})", text::excerpt(target.string())));
   } else if (fs::is_directory(status)) {
     what = "is a folder";
   }

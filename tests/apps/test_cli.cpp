@@ -29,6 +29,7 @@
 #include "mesh/msh_reader.hpp"
 #include "plot/gnuplot.hpp"
 #include "support/cli_runner.hpp"
+#include "support/hostile_text.hpp"
 #include "sweep/sweep.hpp"
 
 namespace snapjump::app {
@@ -1304,6 +1305,18 @@ TEST(RunEnd, AResumeOnAFullDiskEndsAsAWriteFailureAndResumesLater) {
   EXPECT_EQ(text_of(dir / "summary.json"), summary);
   const auto later = run({"run", "--resume", dir.string(), "--end-time", "15ms", "--quiet"});
   EXPECT_EQ(later.code, kExitOk) << later.err;
+}
+
+// A lock file that is a link is named with where it points, an excerpt of the link's text.
+TEST(Cli, ALockFileLinkIsNamedWithAShortEscapedExcerptOfItsTarget) {
+  const auto base = own_folder("snapjump_cli_lock_link_text");
+  fs::create_symlink(test_support::hostile_text(), base / "run.lock");
+  try {
+    const io::FolderLock lock(base, "run.lock", "the run folder");
+    ADD_FAILURE() << "a lock through a link was taken";
+  } catch (const io::LockFileRefused& e) {
+    EXPECT_TRUE(test_support::quotes_only_an_excerpt(e.what()));
+  }
 }
 
 }  // namespace
