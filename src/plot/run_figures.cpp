@@ -140,90 +140,78 @@ struct Panel {
   std::string ylabel;
 };
 
-}  // namespace
-
-FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
-                         const SeriesFigureOptions& series_options) {
-  require_run_folder(run_dir);
-  const auto csv = run_dir / "series.csv";
-  // Read before anything is written: a folder without its series gets no figures folder.
-  std::optional<measure::TimeSeries> read;
+// A series read for the figure; a reader's error is the figure's input error.
+measure::TimeSeries read_series(const fs::path& csv, const measure::ReadOptions& read = {}) {
   try {
-    read.emplace(measure::TimeSeries::read_csv_file(csv));
+    return measure::TimeSeries::read_csv_file(csv, nullptr, read);
   } catch (const measure::SeriesError& e) {
     throw PlotInputError(e.what());
   }
-  const bool with_experiment = !series_options.experiment.empty();
-  auto result = figure_paths(
-      options, run_dir / "figures" / (with_experiment ? "series-experiment" : "series"));
-  auto& notes = result.notes;
-  const auto& s = *read;
-  {
-    std::string missing;
-    for (const char* name : kDrawn) {
-      if (s.has(name)) continue;
-      missing += fmt::format("{}'{}'", missing.empty() ? "" : ", ", name);
-    }
-    if (!missing.empty()) {
-      throw PlotInputError(
-          fmt::format("{}: no column {} (the series figure needs t, z, r, w, F "
-                      "and delta_p)",
-                      csv.string(), missing));
-    }
+}
+
+// The run's series has every column the figure draws, and rows.
+void require_drawable(const measure::TimeSeries& s, const fs::path& csv) {
+  std::string missing;
+  for (const char* name : kDrawn) {
+    if (s.has(name)) continue;
+    missing += fmt::format("{}'{}'", missing.empty() ? "" : ", ", name);
+  }
+  if (!missing.empty()) {
+    throw PlotInputError(
+        fmt::format("{}: no column {} (the series figure needs t, z, r, w, F "
+                    "and delta_p)",
+                    csv.string(), missing));
   }
   if (s.empty()) throw PlotInputError(fmt::format("{}: the series has no rows", csv.string()));
+}
 
-  const auto summary = read_summary(run_dir / "summary.json", notes);
-  const auto t = s.time();
-  const auto z = s.column("z");
-  double dp_max = 0.0;
-  for (const double v : s.column("delta_p")) dp_max = std::max(dp_max, std::abs(v));
+double largest_pressure(const measure::TimeSeries& s, double so_far) {
+  for (const double v : s.column("delta_p")) so_far = std::max(so_far, std::abs(v));
+  return so_far;
+}
 
-  // The experiment, on the run's clock: shifted so that its onset falls on the run's (or not
-  // shifted: both clocks start at the release).
-  std::optional<measure::TimeSeries> experiment;
-  double shift = 0.0;  // added to the experiment's times [s]
-  if (with_experiment) {
-    try {
-      experiment.emplace(measure::TimeSeries::read_csv_file(series_options.experiment, nullptr,
-                                                            series_options.read));
-    } catch (const measure::SeriesError& e) {
-      throw PlotInputError(e.what());
-    }
-    if (experiment->empty()) {
-      throw PlotInputError(
-          fmt::format("{}: the record has no rows", series_options.experiment.string()));
-    }
-    for (const auto& note : experiment->notes()) notes.push_back(fmt::format("record: {}", note));
-    if (experiment->has("delta_p")) {
-      for (const double v : experiment->column("delta_p")) dp_max = std::max(dp_max, std::abs(v));
-    }
-    if (!series_options.align_at_release) {
-      const auto t_run = measured(summary, "t_onset");
-      measure::AnalysisOptions ao;
-      ao.R = summary_radius(summary);
-      std::optional<double> t_exp;
-      try {
-        t_exp = measure::analyze(*experiment, ao).t_onset;
-      } catch (const measure::SeriesError& e) {
-        notes.push_back(fmt::format("the record's onset could not be found: {}", e.what()));
-      }
-      if (t_run && t_exp) {
-        shift = *t_run - *t_exp;
-        notes.push_back(
-            fmt::format("aligned at the onset: the record's {:.6g} s drawn at the run's {:.6g} s",
-                        *t_exp, *t_run));
-      } else {
-        notes.push_back(fmt::format(
-            "aligned at the release: no onset in the {} (w with the run's R, or a contact column)",
-            t_run ? "record" : "run's summary"));
-      }
-    }
+// A measured record beside the run, on the run's clock: shifted so that its onset falls on the
+// run's (or not shifted: both clocks start at the release).
+struct Experiment {
+  measure::TimeSeries series;
+  double shift = 0.0;  // added to the record's times [s]
+};
+
+Experiment read_experiment(const SeriesFigureOptions& series_options, const json& summary,
+                           std::vector<std::string>& notes) {
+  Experiment x{read_series(series_options.experiment, series_options.read), 0.0};
+  if (x.series.empty()) {
+    throw PlotInputError(
+        fmt::format("{}: the record has no rows", series_options.experiment.string()));
   }
-  const bool kpa = dp_max >= 2000.0;
-  const double dp_scale = kpa ? 1e-3 : 1.0;
+  for (const auto& note : x.series.notes()) notes.push_back(fmt::format("record: {}", note));
+  if (series_options.align_at_release) return x;
+  const auto t_run = measured(summary, "t_onset");
+  measure::AnalysisOptions ao;
+  ao.R = summary_radius(summary);
+  std::optional<double> t_exp;
+  try {
+    t_exp = measure::analyze(x.series, ao).t_onset;
+  } catch (const measure::SeriesError& e) {
+    notes.push_back(fmt::format("the record's onset could not be found: {}", e.what()));
+  }
+  if (t_run && t_exp) {
+    x.shift = *t_run - *t_exp;
+    notes.push_back(fmt::format(
+        "aligned at the onset: the record's {:.6g} s drawn at the run's {:.6g} s", *t_exp, *t_run));
+  } else {
+    notes.push_back(fmt::format(
+        "aligned at the release: no onset in the {} (w with the run's R, or a contact column)",
+        t_run ? "record" : "run's summary"));
+  }
+  return x;
+}
 
-  // The window drawn [s, on the run's clock].
+// The window drawn [s, on the run's clock]: the option's, or the run's and the record's times.
+std::pair<double, double> series_window(const measure::TimeSeries& s,
+                                        const SeriesFigureOptions& series_options,
+                                        const std::optional<Experiment>& experiment) {
+  const auto t = s.time();
   double w0 = t.front(), w1 = t.back();
   if (series_options.window) {
     w0 = series_options.window->first;
@@ -233,79 +221,78 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
           fmt::format("--window {:.6g}s:{:.6g}s: the end must come after the start", w0, w1));
     }
   } else if (experiment) {
-    w0 = std::min(w0, experiment->time().front() + shift);
-    w1 = std::max(w1, experiment->time().back() + shift);
+    w0 = std::min(w0, experiment->series.time().front() + experiment->shift);
+    w1 = std::max(w1, experiment->series.time().back() + experiment->shift);
   }
+  return {w0, w1};
+}
 
-  // Rows of a series inside the window (with the sample on either side), thinned to `limit`
-  // (every k-th row; the largest F is kept), in the script's units.
-  const auto rows_of = [&](const measure::TimeSeries& series, double dt, const char* what) {
-    const auto ts = series.time();
-    const double scale[] = {1e3, 1e3, 1e3, 1.0, dp_scale};
-    std::size_t from = 0, to = ts.size();
-    while (from + 1 < ts.size() && ts[from + 1] + dt <= w0) ++from;
-    while (to > from + 1 && ts[to - 2] + dt >= w1) --to;
-    const std::size_t count = to - from;
-    const std::size_t limit = 40000;
-    const std::size_t stride = count > limit ? (count + limit - 1) / limit : 1;
-    std::size_t i_fmax = from;
-    if (series.has("F")) {
-      const auto f = series.column("F");
-      for (std::size_t i = from; i < to; ++i) {
-        if (f[i] > f[i_fmax]) i_fmax = i;
-      }
-    }
-    std::vector<std::vector<double>> rows;
+// Rows of a series inside the window [w0, w1] (with the sample on either side), shifted by dt,
+// thinned to 40000 (every k-th row; the largest F is kept), in the script's units.
+std::vector<std::vector<double>> window_rows(const measure::TimeSeries& series, double dt,
+                                             const char* what, std::pair<double, double> window,
+                                             double dp_scale, std::vector<std::string>& notes) {
+  const auto [w0, w1] = window;
+  const auto ts = series.time();
+  const double scale[] = {1e3, 1e3, 1e3, 1.0, dp_scale};
+  std::size_t from = 0, to = ts.size();
+  while (from + 1 < ts.size() && ts[from + 1] + dt <= w0) ++from;
+  while (to > from + 1 && ts[to - 2] + dt >= w1) --to;
+  const std::size_t count = to - from;
+  const std::size_t limit = 40000;
+  const std::size_t stride = count > limit ? (count + limit - 1) / limit : 1;
+  std::size_t i_fmax = from;
+  if (series.has("F")) {
+    const auto f = series.column("F");
     for (std::size_t i = from; i < to; ++i) {
-      if ((i - from) % stride != 0 && i != i_fmax && i + 1 != to) continue;
-      std::vector<double> row{(ts[i] + dt) * 1e3};
-      for (std::size_t k = 0; k < kDrawn.size(); ++k) {
-        // A record may lack a column: 0 there, never drawn (a non-finite value would blank the
-        // whole row of the datablock).
-        row.push_back(series.has(kDrawn[k]) ? series.column(kDrawn[k])[i] * scale[k] : 0.0);
-      }
-      rows.push_back(std::move(row));
+      if (f[i] > f[i_fmax]) i_fmax = i;
     }
-    if (stride > 1) notes.push_back(fmt::format("{}: every {}th row is drawn", what, stride));
-    if (rows.empty()) notes.push_back(fmt::format("{}: no rows inside the window", what));
-    return rows;
-  };
+  }
+  std::vector<std::vector<double>> rows;
+  for (std::size_t i = from; i < to; ++i) {
+    if ((i - from) % stride != 0 && i != i_fmax && i + 1 != to) continue;
+    std::vector<double> row{(ts[i] + dt) * 1e3};
+    for (std::size_t k = 0; k < kDrawn.size(); ++k) {
+      // A record may lack a column: 0 there, never drawn (a non-finite value would blank the
+      // whole row of the datablock).
+      row.push_back(series.has(kDrawn[k]) ? series.column(kDrawn[k])[i] * scale[k] : 0.0);
+    }
+    rows.push_back(std::move(row));
+  }
+  if (stride > 1) notes.push_back(fmt::format("{}: every {}th row is drawn", what, stride));
+  if (rows.empty()) notes.push_back(fmt::format("{}: no rows inside the window", what));
+  return rows;
+}
 
-  std::string gp;
-  gp += fmt::format(
-      "# Fig. 2(a) of the paper: the time series of one run, from {}{}.\n"
-      "# Written by `snapjump plot series`; edit and redraw with `gnuplot {}` in this folder.\n"
-      "# Units: t in ms, z r w in mm, F in N, delta_p in {}.\n",
-      printable(csv.string()),
-      experiment ? fmt::format(", and the record {}", printable(series_options.experiment.string()))
-                 : std::string(),
-      printable(result.script.filename().string()), kpa ? "kPa" : "Pa");
-  gp += terminal(options.format, 1200, 1000, result.figure, 14);
-  const std::string columns =
-      fmt::format("t [ms]  z [mm]  r [mm]  w [mm]  F [N]  delta_p [{}]", kpa ? "kPa" : "Pa");
-  gp += datablock("series", columns, rows_of(s, 0.0, "run"));
-  if (experiment) gp += datablock("experiment", columns, rows_of(*experiment, shift, "record"));
-
-  // Marks shared by every panel: contact states shaded, onset and launch as vertical lines.
+// The contact states shaded behind every panel (not when they change more than 400 times);
+// `ring` and `disk` say which were drawn, for the key.
+std::string contact_shading(const measure::TimeSeries& s, std::vector<std::string>& notes,
+                            bool& ring, bool& disk) {
   const auto intervals = contact_intervals(s);
-  bool ring = false, disk = false;
-  if (intervals.size() <= 400) {
-    int k = 1;
-    for (const auto& iv : intervals) {
-      const bool is_disk = iv.state == measure::ContactState::Disk;
-      (is_disk ? disk : ring) = true;
-      gp += fmt::format(
-          "set object {} rect from first {}, graph 0 to first {}, graph 1 behind fc rgb '{}' "
-          "fs solid 1.0 noborder\n",
-          k++, number(iv.t0 * 1e3), number(iv.t1 * 1e3), is_disk ? "#d6e6f5" : "#fdebd3");
-    }
-  } else {
+  std::string gp;
+  if (intervals.size() > 400) {
     notes.push_back(
         fmt::format("the contact state changes {} times: not shaded", intervals.size()));
+    return gp;
   }
+  int k = 1;
+  for (const auto& iv : intervals) {
+    const bool is_disk = iv.state == measure::ContactState::Disk;
+    (is_disk ? disk : ring) = true;
+    gp += fmt::format(
+        "set object {} rect from first {}, graph 0 to first {}, graph 1 behind fc rgb '{}' "
+        "fs solid 1.0 noborder\n",
+        k++, number(iv.t0 * 1e3), number(iv.t1 * 1e3), is_disk ? "#d6e6f5" : "#fdebd3");
+  }
+  return gp;
+}
+
+// The onset and the launch from summary.json as vertical lines (the returned arrows) and their
+// labels (`labels`, set on the first panel only).
+std::string event_marks(const json& summary, std::vector<std::string>& notes, std::string& labels) {
   const auto t_onset = measured(summary, "t_onset");
   const auto t_launch = measured(summary, "t_launch");
-  std::string labels;
+  std::string gp;
   int arrow = 1;
   for (const auto& [tm, name] : {std::pair{t_onset, "onset"}, std::pair{t_launch, "launch"}}) {
     if (!tm) continue;
@@ -321,6 +308,182 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
   if (summary.is_object() && !t_onset && !t_launch) {
     notes.push_back("summary.json has no measured onset or launch: no marks");
   }
+  return gp;
+}
+
+// The panels; with a record, those it has no column of are left out.
+std::vector<Panel> series_panels(bool kpa, const std::optional<Experiment>& experiment,
+                                 std::vector<std::string>& notes) {
+  std::vector<Panel> panels{
+      {{"z"}, {"z"}, {style::kBlue}, "container height z [mm]"},
+      {{"r", "w"}, {"contact radius r", "apex gap w"}, {style::kRed, style::kGreen}, "r, w [mm]"},
+      {{"F"}, {"F"}, {style::kPurple}, "plate force F [N]"},
+      {{"delta_p"},
+       {"pressure difference δp (outside - inside)"},
+       {style::kOrange},
+       fmt::format("δp [{}]", kpa ? "kPa" : "Pa")},
+  };
+  if (!experiment) return panels;
+  std::vector<Panel> kept;
+  for (auto& p : panels) {
+    const bool has = std::any_of(p.columns.begin(), p.columns.end(),
+                                 [&](const char* c) { return experiment->series.has(c); });
+    if (has) {
+      kept.push_back(std::move(p));
+    } else {
+      notes.push_back(fmt::format("the record has no {}: that panel is left out",
+                                  fmt::join(p.columns, " or ")));
+    }
+  }
+  return kept;
+}
+
+// The column of a drawn quantity in the datablocks: t is column 1.
+int column_index(const char* name) {
+  const auto at = std::find_if(kDrawn.begin(), kDrawn.end(),
+                               [&](const char* c) { return std::string_view(c) == name; });
+  return static_cast<int>(at - kDrawn.begin()) + 2;
+}
+
+// What the panels draw besides the series: the summary's marks, the contact key entries.
+struct PanelMarks {
+  const json& summary;
+  const measure::TimeSeries& run;
+  bool ring = false, disk = false;
+};
+
+// The theory's H band and the measured H on the z panel, the contact key on the r panel, the
+// theory's F* band and the measured F* on the force panel: their clauses, and the datablocks
+// they need added to gp.
+void panel_extras(const Panel& p, const PanelMarks& marks, std::string& gp,
+                  std::vector<std::string>& clauses) {
+  const auto& summary = marks.summary;
+  const std::string_view first = p.columns.front();
+  if (first == "z") {
+    if (const auto H = theory_range(summary, "H")) {
+      clauses.push_back(
+          fmt::format("'+' using 1:({}):({}) with filledcurves {} title 'theory H bounds'",
+                      number(H->first * 1e3), number(H->second * 1e3), style::kBand));
+    }
+    if (const auto H = measured(summary, "H")) {
+      const auto t = marks.run.time();
+      const auto z = marks.run.column("z");
+      const auto top_z = std::max_element(z.begin(), z.end()) - z.begin();
+      gp += fmt::format("$H << EOD\n{} {}\nEOD\n", number(t[static_cast<std::size_t>(top_z)] * 1e3),
+                        number(*H * 1e3));
+      clauses.push_back(
+          fmt::format("$H using 1:2 {} title 'H (measured)'", style::points(style::kBlue, 8, 1.8)));
+    }
+  } else if (first == "r") {
+    if (marks.ring) {
+      clauses.emplace_back(
+          "keyentry with boxes fc rgb '#fdebd3' fs solid 1.0 noborder title 'ring contact'");
+    }
+    if (marks.disk) {
+      clauses.emplace_back(
+          "keyentry with boxes fc rgb '#d6e6f5' fs solid 1.0 noborder title 'disk contact'");
+    }
+  } else if (first == "F") {
+    if (const auto Fs = theory_range(summary, "F_star")) {
+      clauses.push_back(
+          fmt::format("'+' using 1:({}):({}) with filledcurves {} title 'theory F* bounds'",
+                      number(Fs->first), number(Fs->second), style::kBand));
+    }
+    const auto F_star = measured(summary, "F_star");
+    const auto t_F_star = measured(summary, "t_F_star");
+    if (F_star && t_F_star) {
+      gp += fmt::format("$Fstar << EOD\n{} {}\nEOD\n", number(*t_F_star * 1e3), number(*F_star));
+      clauses.push_back(fmt::format("$Fstar using 1:2 {} title 'F* (measured)'",
+                                    style::points(style::kPurple, 6, 2.0)));
+    }
+  }
+}
+
+// Panel k of n, stacked: its margins, axes, key and plot command (the event labels on the first).
+std::string panel_script(int k, int n_panels, const Panel& p, const PanelMarks& marks,
+                         const std::optional<Experiment>& experiment, const std::string& labels) {
+  const double top = 0.94, bottom = 0.07, left = 0.1, right = 0.97;
+  std::string gp = style::stacked_margins(k, n_panels, top, bottom, left, right);
+  if (k + 1 < n_panels) {
+    gp += "set format x ''\nunset xlabel\n";
+  } else {
+    gp += fmt::format("set format x '%g'\nset xlabel {}\n",
+                      quote(experiment && experiment->shift != 0.0 ? "t after release (run) [ms]"
+                                                                   : "t after release [ms]"));
+  }
+  if (k == 0) gp += labels;
+  const bool force_panel = std::string_view(p.columns.front()) == "F";
+  gp += fmt::format(
+      "set ylabel {}\nset key {}\n", quote(p.ylabel),
+      std::string_view(p.columns.front()) == "z" || force_panel ? "top left" : "bottom left");
+  std::vector<std::string> clauses;
+  for (std::size_t c = 0; c < p.columns.size(); ++c) {
+    const int col = column_index(p.columns[c]);
+    if (experiment && experiment->series.has(p.columns[c])) {
+      clauses.push_back(fmt::format("$experiment using 1:{} with lines lw 2 lc rgb '{}' title {}",
+                                    col, p.colours[c],
+                                    quote(fmt::format("experiment {}", p.titles[c]))));
+    }
+    clauses.push_back(fmt::format("$series using 1:{} with lines lw {} {}lc rgb '{}' title {}", col,
+                                  experiment ? 1.5 : 2.0, experiment ? "dt 2 " : "", p.colours[c],
+                                  quote(fmt::format("simulation {}", p.titles[c]))));
+  }
+  panel_extras(p, marks, gp, clauses);
+  gp += fmt::format("plot {}\n", fmt::join(clauses, ", "));
+  if (k == 0 && !labels.empty()) gp += "unset label\n";
+  return gp;
+}
+
+}  // namespace
+
+FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
+                         const SeriesFigureOptions& series_options) {
+  require_run_folder(run_dir);
+  const auto csv = run_dir / "series.csv";
+  // Read before anything is written: a folder without its series gets no figures folder.
+  const auto s = read_series(csv);
+  const bool with_experiment = !series_options.experiment.empty();
+  auto result = figure_paths(
+      options, run_dir / "figures" / (with_experiment ? "series-experiment" : "series"));
+  auto& notes = result.notes;
+  require_drawable(s, csv);
+
+  const auto summary = read_summary(run_dir / "summary.json", notes);
+  double dp_max = largest_pressure(s, 0.0);
+  std::optional<Experiment> experiment;
+  if (with_experiment) {
+    experiment = read_experiment(series_options, summary, notes);
+    if (experiment->series.has("delta_p")) dp_max = largest_pressure(experiment->series, dp_max);
+  }
+  const bool kpa = dp_max >= 2000.0;
+  const double dp_scale = kpa ? 1e-3 : 1.0;
+  const auto window = series_window(s, series_options, experiment);
+  const auto [w0, w1] = window;
+
+  std::string gp;
+  gp += fmt::format(
+      "# Fig. 2(a) of the paper: the time series of one run, from {}{}.\n"
+      "# Written by `snapjump plot series`; edit and redraw with `gnuplot {}` in this folder.\n"
+      "# Units: t in ms, z r w in mm, F in N, delta_p in {}.\n",
+      printable(csv.string()),
+      experiment ? fmt::format(", and the record {}", printable(series_options.experiment.string()))
+                 : std::string(),
+      printable(result.script.filename().string()), kpa ? "kPa" : "Pa");
+  gp += terminal(options.format, 1200, 1000, result.figure, 14);
+  const std::string columns =
+      fmt::format("t [ms]  z [mm]  r [mm]  w [mm]  F [N]  delta_p [{}]", kpa ? "kPa" : "Pa");
+  gp += datablock("series", columns, window_rows(s, 0.0, "run", window, dp_scale, notes));
+  if (experiment) {
+    gp += datablock(
+        "experiment", columns,
+        window_rows(experiment->series, experiment->shift, "record", window, dp_scale, notes));
+  }
+
+  // Marks shared by every panel: contact states shaded, onset and launch as vertical lines.
+  PanelMarks marks{summary, s};
+  gp += contact_shading(s, notes, marks.ring, marks.disk);
+  std::string labels;
+  gp += event_marks(summary, notes, labels);
 
   const auto title = summary_title(summary);
   gp += fmt::format("set multiplot title {} noenhanced\n",
@@ -331,105 +494,10 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
       "set offsets 0, 0, graph 0.06, graph 0.06\nset key Left reverse opaque box lc rgb "
       "'#c0c0c0'\n";
   gp += "set grid xtics ytics lc rgb '#e0e0e0'\nset mxtics\n";
-  const double top = 0.94, bottom = 0.07, left = 0.1, right = 0.97;
-
-  // The panels; with a record, those it has no column of are left out.
-  std::vector<Panel> panels{
-      {{"z"}, {"z"}, {style::kBlue}, "container height z [mm]"},
-      {{"r", "w"}, {"contact radius r", "apex gap w"}, {style::kRed, style::kGreen}, "r, w [mm]"},
-      {{"F"}, {"F"}, {style::kPurple}, "plate force F [N]"},
-      {{"delta_p"},
-       {"pressure difference δp (outside - inside)"},
-       {style::kOrange},
-       fmt::format("δp [{}]", kpa ? "kPa" : "Pa")},
-  };
-  if (experiment) {
-    std::vector<Panel> kept;
-    for (auto& p : panels) {
-      const bool has = std::any_of(p.columns.begin(), p.columns.end(),
-                                   [&](const char* c) { return experiment->has(c); });
-      if (has) {
-        kept.push_back(std::move(p));
-      } else {
-        notes.push_back(fmt::format("the record has no {}: that panel is left out",
-                                    fmt::join(p.columns, " or ")));
-      }
-    }
-    panels = std::move(kept);
-  }
+  const auto panels = series_panels(kpa, experiment, notes);
   const int n_panels = static_cast<int>(panels.size());
-  const auto column_index = [](const char* name) {  // in the datablocks: t is column 1
-    const auto at = std::find_if(kDrawn.begin(), kDrawn.end(),
-                                 [&](const char* c) { return std::string_view(c) == name; });
-    return static_cast<int>(at - kDrawn.begin()) + 2;
-  };
   for (int k = 0; k < n_panels; ++k) {
-    const auto& p = panels[static_cast<std::size_t>(k)];
-    gp += style::stacked_margins(k, n_panels, top, bottom, left, right);
-    if (k + 1 < n_panels) {
-      gp += "set format x ''\nunset xlabel\n";
-    } else {
-      gp += fmt::format("set format x '%g'\nset xlabel {}\n",
-                        quote(experiment && shift != 0.0 ? "t after release (run) [ms]"
-                                                         : "t after release [ms]"));
-    }
-    if (k == 0) gp += labels;
-    const bool force_panel = std::string_view(p.columns.front()) == "F";
-    gp += fmt::format(
-        "set ylabel {}\nset key {}\n", quote(p.ylabel),
-        std::string_view(p.columns.front()) == "z" || force_panel ? "top left" : "bottom left");
-    std::vector<std::string> clauses;
-    for (std::size_t c = 0; c < p.columns.size(); ++c) {
-      const int col = column_index(p.columns[c]);
-      if (experiment && experiment->has(p.columns[c])) {
-        clauses.push_back(fmt::format("$experiment using 1:{} with lines lw 2 lc rgb '{}' title {}",
-                                      col, p.colours[c],
-                                      quote(fmt::format("experiment {}", p.titles[c]))));
-      }
-      clauses.push_back(fmt::format("$series using 1:{} with lines lw {} {}lc rgb '{}' title {}",
-                                    col, experiment ? 1.5 : 2.0, experiment ? "dt 2 " : "",
-                                    p.colours[c],
-                                    quote(fmt::format("simulation {}", p.titles[c]))));
-    }
-    const std::string_view first = p.columns.front();
-    if (first == "z") {
-      if (const auto H = theory_range(summary, "H")) {
-        clauses.push_back(
-            fmt::format("'+' using 1:({}):({}) with filledcurves {} title 'theory H bounds'",
-                        number(H->first * 1e3), number(H->second * 1e3), style::kBand));
-      }
-      if (const auto H = measured(summary, "H")) {
-        const auto top_z = std::max_element(z.begin(), z.end()) - z.begin();
-        gp += fmt::format("$H << EOD\n{} {}\nEOD\n",
-                          number(t[static_cast<std::size_t>(top_z)] * 1e3), number(*H * 1e3));
-        clauses.push_back(fmt::format("$H using 1:2 {} title 'H (measured)'",
-                                      style::points(style::kBlue, 8, 1.8)));
-      }
-    } else if (first == "r") {
-      if (ring) {
-        clauses.emplace_back(
-            "keyentry with boxes fc rgb '#fdebd3' fs solid 1.0 noborder title 'ring contact'");
-      }
-      if (disk) {
-        clauses.emplace_back(
-            "keyentry with boxes fc rgb '#d6e6f5' fs solid 1.0 noborder title 'disk contact'");
-      }
-    } else if (force_panel) {
-      if (const auto Fs = theory_range(summary, "F_star")) {
-        clauses.push_back(
-            fmt::format("'+' using 1:({}):({}) with filledcurves {} title 'theory F* bounds'",
-                        number(Fs->first), number(Fs->second), style::kBand));
-      }
-      const auto F_star = measured(summary, "F_star");
-      const auto t_F_star = measured(summary, "t_F_star");
-      if (F_star && t_F_star) {
-        gp += fmt::format("$Fstar << EOD\n{} {}\nEOD\n", number(*t_F_star * 1e3), number(*F_star));
-        clauses.push_back(fmt::format("$Fstar using 1:2 {} title 'F* (measured)'",
-                                      style::points(style::kPurple, 6, 2.0)));
-      }
-    }
-    gp += fmt::format("plot {}\n", fmt::join(clauses, ", "));
-    if (k == 0 && !labels.empty()) gp += "unset label\n";
+    gp += panel_script(k, n_panels, panels[static_cast<std::size_t>(k)], marks, experiment, labels);
   }
   gp += "unset multiplot\n";
 
@@ -437,21 +505,19 @@ FigureResult plot_series(const fs::path& run_dir, const FigureOptions& options,
   return result;
 }
 
-FigureResult plot_sections(const fs::path& run_dir, std::span<const double> times,
-                           const FigureOptions& options) {
-  require_run_folder(run_dir);
-  if (times.empty()) throw PlotInputError("--times: give at least one time, e.g. 0,0.2,0.45");
-  const auto pvd = run_dir / "run.pvd";
-  const auto frames = read_pvd(pvd);
-  auto result = figure_paths(options, run_dir / "figures" / "sections");
-  auto& notes = result.notes;
+namespace {
 
-  struct Section {
-    double requested = 0.0;
-    const Frame* frame = nullptr;
-    std::vector<std::vector<double>> rows;  // x, z in mm
-    bool projected = false;
-  };
+// One cross-section of the figure: the snapshot nearest a requested time and its points.
+struct Section {
+  double requested = 0.0;
+  const Frame* frame = nullptr;
+  std::vector<std::vector<double>> rows;  // x, z in mm
+  bool projected = false;
+};
+
+// The snapshots nearest the times, each once (a note for one already drawn or far away).
+std::vector<Section> pick_sections(const std::vector<Frame>& frames, std::span<const double> times,
+                                   std::vector<std::string>& notes) {
   std::vector<Section> sections;
   for (const double t : times) {
     const Frame& f = nearest_frame(frames, t);
@@ -469,49 +535,66 @@ FigureResult plot_sections(const fs::path& run_dir, std::span<const double> time
     }
     sections.push_back({t, &f, {}, false});
   }
+  return sections;
+}
 
+// The section's rows from its snapshot: the points in a slab around the plane through the middle
+// of the shell, parallel to x-z, or, when too few lie there, every point projected on (signed
+// distance to the axis, z).
+void read_section(Section& sec, const fs::path& run_dir, std::vector<std::string>& notes) {
+  const auto file = sec.frame->file.is_absolute() ? sec.frame->file : run_dir / sec.frame->file;
+  const auto points = read_vtu_points(file);
+  if (points.empty()) throw PlotInputError(fmt::format("{}: has no points", file.string()));
+  double x0 = points[0][0], x1 = x0, y0 = points[0][1], y1 = y0;
+  for (const auto& p : points) {
+    x0 = std::min(x0, p[0]);
+    x1 = std::max(x1, p[0]);
+    y0 = std::min(y0, p[1]);
+    y1 = std::max(y1, p[1]);
+  }
+  const double yc = 0.5 * (y0 + y1);
+  const double half = 0.015 * std::max(x1 - x0, y1 - y0);
+  for (const auto& p : points) {
+    if (std::abs(p[1] - yc) <= half) sec.rows.push_back({p[0] * 1e3, p[2] * 1e3});
+  }
+  const std::size_t needed = std::max<std::size_t>(20, points.size() / 500);
+  if (sec.rows.size() >= needed) return;
+  sec.projected = true;
+  sec.rows.clear();
+  const double xc = 0.5 * (x0 + x1);
+  for (const auto& p : points) {
+    const double dx = p[0] - xc, dy = p[1] - yc;
+    const double rho = std::copysign(std::hypot(dx, dy), dx) + xc;
+    sec.rows.push_back({rho * 1e3, p[2] * 1e3});
+  }
+  notes.push_back(
+      fmt::format("{}: few points near the plane y = {:.3g} mm; drawn projected on "
+                  "(signed distance to the axis, z)",
+                  file.string(), yc * 1e3));
+}
+
+// The extent of all sections' rows [mm].
+struct Bounds2 {
   double xmin = std::numeric_limits<double>::infinity(), xmax = -xmin, zmin = xmin, zmax = -xmin;
-  for (auto& sec : sections) {
-    const auto file = sec.frame->file.is_absolute() ? sec.frame->file : run_dir / sec.frame->file;
-    const auto points = read_vtu_points(file);
-    if (points.empty()) throw PlotInputError(fmt::format("{}: has no points", file.string()));
-    double x0 = points[0][0], x1 = x0, y0 = points[0][1], y1 = y0;
-    for (const auto& p : points) {
-      x0 = std::min(x0, p[0]);
-      x1 = std::max(x1, p[0]);
-      y0 = std::min(y0, p[1]);
-      y1 = std::max(y1, p[1]);
-    }
-    // A slab around the plane through the middle of the shell, parallel to x-z.
-    const double yc = 0.5 * (y0 + y1);
-    const double half = 0.015 * std::max(x1 - x0, y1 - y0);
-    for (const auto& p : points) {
-      if (std::abs(p[1] - yc) <= half) sec.rows.push_back({p[0] * 1e3, p[2] * 1e3});
-    }
-    const std::size_t needed = std::max<std::size_t>(20, points.size() / 500);
-    if (sec.rows.size() < needed) {
-      // Too few points near the plane: project every point on (signed distance to the axis, z).
-      sec.projected = true;
-      sec.rows.clear();
-      const double xc = 0.5 * (x0 + x1);
-      for (const auto& p : points) {
-        const double dx = p[0] - xc, dy = p[1] - yc;
-        const double rho = std::copysign(std::hypot(dx, dy), dx) + xc;
-        sec.rows.push_back({rho * 1e3, p[2] * 1e3});
-      }
-      notes.push_back(
-          fmt::format("{}: few points near the plane y = {:.3g} mm; drawn projected on "
-                      "(signed distance to the axis, z)",
-                      file.string(), yc * 1e3));
-    }
+};
+
+Bounds2 sections_extent(const std::vector<Section>& sections) {
+  Bounds2 b;
+  for (const auto& sec : sections) {
     for (const auto& row : sec.rows) {
-      xmin = std::min(xmin, row[0]);
-      xmax = std::max(xmax, row[0]);
-      zmin = std::min(zmin, row[1]);
-      zmax = std::max(zmax, row[1]);
+      b.xmin = std::min(b.xmin, row[0]);
+      b.xmax = std::max(b.xmax, row[0]);
+      b.zmin = std::min(b.zmin, row[1]);
+      b.zmax = std::max(b.zmax, row[1]);
     }
   }
+  return b;
+}
 
+std::string sections_script(const std::vector<Section>& sections, const fs::path& pvd,
+                            const fs::path& run_dir, const FigureResult& result,
+                            const FigureOptions& options) {
+  const auto [xmin, xmax, zmin, zmax] = sections_extent(sections);
   std::string gp;
   gp += fmt::format(
       "# Fig. 1(c) of the paper: cross-sections of the shell, from {}.\n"
@@ -547,7 +630,21 @@ FigureResult plot_sections(const fs::path& run_dir, std::span<const double> time
         "'t = {:.1f} ms'",
         k, style::kPalette[k % std::size(style::kPalette)], sections[k].frame->time * 1e3);
   }
-  gp += plot + "\n";
+  return gp + plot + "\n";
+}
+
+}  // namespace
+
+FigureResult plot_sections(const fs::path& run_dir, std::span<const double> times,
+                           const FigureOptions& options) {
+  require_run_folder(run_dir);
+  if (times.empty()) throw PlotInputError("--times: give at least one time, e.g. 0,0.2,0.45");
+  const auto pvd = run_dir / "run.pvd";
+  const auto frames = read_pvd(pvd);
+  auto result = figure_paths(options, run_dir / "figures" / "sections");
+  auto sections = pick_sections(frames, times, result.notes);
+  for (auto& sec : sections) read_section(sec, run_dir, result.notes);
+  const auto gp = sections_script(sections, pvd, run_dir, result, options);
   render(result, gp, options.gnuplot);
   return result;
 }
