@@ -2,6 +2,11 @@
 // -> particle velocities -> particle to grid (APIC, quadratic B-splines) -> grid rules -> grid to
 // particle -> advection, then the rigid bodies. The engine knows nothing about tetrahedra: the
 // forces come from any ForceProvider.
+//
+// The transfers here are optimised (blocks, colours, separable stencils, Morton order, AVX2);
+// their readable specification, one particle and one node at a time with the paper's equation
+// numbers, is mpm/reference_transfer.hpp, and tests/mpm/test_transfers.cpp holds the two to each
+// other.
 #pragma once
 
 #include <cstdint>

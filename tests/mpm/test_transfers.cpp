@@ -17,6 +17,7 @@
 #include "mesh/solid_mesher.hpp"
 #include "mpm/grid.hpp"
 #include "mpm/mpm_test_support.hpp"
+#include "mpm/reference_transfer.hpp"
 #include "mpm/stepper.hpp"
 
 namespace snapjump::mpm {
@@ -75,50 +76,17 @@ TEST(Transfers, ParticleToGridConservesMassAndMomentum) {
 }
 
 // The optimised transfers (blocks, colours, separable stencils, Morton order) against the
-// textbook's, written here from the paper's formulas with nothing from the stepper: the quadratic
-// B-spline N(r) = 3/4 - r^2 (|r| < 1/2), (3/2 - |r|)^2 / 2 (|r| < 3/2), per axis;
-// m_a = sum m_i N, p_a = sum m_i (v_i + C_i (x_a - x_i)) N; then v_i = sum N p_a / m_a and
-// C_i = 4 / dx^2 sum N (p_a / m_a) (x_a - x_i)^T.
+// textbook's, mpm::reference (src/mpm/reference_transfer.hpp), which shares nothing with the
+// stepper but the particles' layout.
 TEST(Transfers, TheOptimisedTransfersAreTheTextbooks) {
   NoForces none;
-  const double dx = 0.002;
-  Stepper s(random_particles(300, 7), none, {1e-6, dx, 0.5});
+  const double dx = 0.002, dt = 1e-6;
+  Stepper s(random_particles(300, 7), none, {dt, dx, 0.5});
   // A first transfer leaves its sums on the grid; the second, from the same particles, keeps the
   // blocks and must start again from zero (the grid zeroes each block as a transfer claims it).
   s.particle_to_grid();
   const auto p = s.particles();  // before the transfers
-  const auto N1 = [](double r) {
-    r = std::abs(r);
-    return r < 0.5 ? 0.75 - r * r : (r < 1.5 ? 0.5 * (1.5 - r) * (1.5 - r) : 0.0);
-  };
-  struct Node {
-    double m = 0, px = 0, py = 0, pz = 0;
-  };
-  std::map<std::array<std::int64_t, 3>, Node> book;
-  const auto stencil = [&](std::size_t i, const auto& visit) {
-    const double X[3] = {p.x.x[i] / dx, p.x.y[i] / dx, p.x.z[i] / dx};
-    std::int64_t lo[3];
-    for (int d = 0; d < 3; ++d) lo[d] = static_cast<std::int64_t>(std::floor(X[d] - 0.5));
-    for (std::int64_t a = lo[0]; a < lo[0] + 3; ++a) {
-      for (std::int64_t b = lo[1]; b < lo[1] + 3; ++b) {
-        for (std::int64_t c = lo[2]; c < lo[2] + 3; ++c) {
-          const double w = N1(X[0] - a) * N1(X[1] - b) * N1(X[2] - c);
-          const double d[3] = {a * dx - p.x.x[i], b * dx - p.x.y[i], c * dx - p.x.z[i]};
-          visit(std::array<std::int64_t, 3>{a, b, c}, w, d);
-        }
-      }
-    }
-  };
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    stencil(i, [&](const std::array<std::int64_t, 3>& key, double w, const double* d) {
-      const double* C = &p.C[9 * i];
-      auto& n = book[key];
-      n.m += p.mass[i] * w;
-      n.px += p.mass[i] * w * (p.v.x[i] + C[0] * d[0] + C[1] * d[1] + C[2] * d[2]);
-      n.py += p.mass[i] * w * (p.v.y[i] + C[3] * d[0] + C[4] * d[1] + C[5] * d[2]);
-      n.pz += p.mass[i] * w * (p.v.z[i] + C[6] * d[0] + C[7] * d[1] + C[8] * d[2]);
-    });
-  }
+  const auto book = reference::particle_to_grid(p, dx);
   s.particle_to_grid();
   const auto& g = s.grid();
   double m_max = 0, p_max = 0;
@@ -143,22 +111,17 @@ TEST(Transfers, TheOptimisedTransfersAreTheTextbooks) {
   // Grid to particle.
   s.grid_to_particle();
   const auto& q = s.particles();
+  const auto want = reference::grid_to_particle(p, book, dx, dt);
+  ASSERT_EQ(want.size(), q.size());
   double v_max = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    double v[3] = {}, C[9] = {};
-    stencil(i, [&](const std::array<std::int64_t, 3>& key, double w, const double* d) {
-      const auto& n = book.at(key);
-      if (n.m <= 0.0) return;
-      const double u[3] = {n.px / n.m, n.py / n.m, n.pz / n.m};
-      for (int r = 0; r < 3; ++r) {
-        v[r] += w * u[r];
-        for (int c = 0; c < 3; ++c) C[3 * r + c] += 4.0 / (dx * dx) * w * u[r] * d[c];
-      }
-    });
-    const double got[3] = {q.v.x[i], q.v.y[i], q.v.z[i]};
+    const auto& [v, C, x] = want[i];
+    const double got_v[3] = {q.v.x[i], q.v.y[i], q.v.z[i]};
+    const double got_x[3] = {q.x.x[i], q.x.y[i], q.x.z[i]};
     for (int r = 0; r < 3; ++r) {
       v_max = std::max(v_max, std::abs(v[r]));
-      EXPECT_NEAR(got[r], v[r], 1e-12) << "particle " << i;
+      EXPECT_NEAR(got_v[r], v[r], 1e-12) << "particle " << i;
+      EXPECT_NEAR(got_x[r], x[r], 1e-15) << "particle " << i;
       for (int c = 0; c < 3; ++c) {
         EXPECT_NEAR(q.C[9 * i + 3 * r + c], C[3 * r + c], 1e-9 * (1.0 + std::abs(C[3 * r + c])))
             << "particle " << i;
@@ -166,6 +129,25 @@ TEST(Transfers, TheOptimisedTransfersAreTheTextbooks) {
     }
   }
   EXPECT_GT(v_max, 0.1);  // the velocities are not trivially zero
+}
+
+// The textbook's B-spline at the points where its pieces meet and beyond its support, and its
+// stencil's 27 weights summing to one.
+TEST(Transfers, TheTextbooksSplineIsTheQuadraticBSpline) {
+  EXPECT_DOUBLE_EQ(reference::quadratic_bspline(0.0), 0.75);
+  EXPECT_DOUBLE_EQ(reference::quadratic_bspline(0.5), 0.5);
+  EXPECT_DOUBLE_EQ(reference::quadratic_bspline(-0.5), 0.5);
+  EXPECT_DOUBLE_EQ(reference::quadratic_bspline(1.0), 0.125);
+  EXPECT_DOUBLE_EQ(reference::quadratic_bspline(1.5), 0.0);
+  EXPECT_DOUBLE_EQ(reference::quadratic_bspline(-2.0), 0.0);
+  core::Points at;
+  at.push_back(0.0031, -0.0017, 0.0109);
+  const auto one = Particles::at_rest(at, {2.0});
+  const auto grid = reference::particle_to_grid(one, 0.002);
+  double m = 0.0;
+  for (const auto& [key, n] : grid) m += n.m;
+  EXPECT_EQ(grid.size(), 27u);
+  EXPECT_NEAR(m, 2.0, 1e-15);
 }
 
 // The transfers update a node's four values and a particle's rows two lanes at a time: every
