@@ -10,7 +10,8 @@
 // Rescaled units (nu drops out of the problem):
 //   kappa = 12 (1 - nu^2),  l = sqrt(h R) / kappa^(1/4),  W = l^2 / R = h / sqrt(kappa),
 //   x = r / l (radius),  e_hat = e / W (displacement of the plane),
-//   F = (D / R) N = E h^3 N / (kappa R) (force).
+//   F = (D / R) N = E h^3 N / (kappa R) (force): the disk law F_disk = E h^3 N_hat(e_hat) /
+//   (12 (1 - nu^2) R) of the paper's Eq. S19, N = N_hat.
 // Unknowns t(x) (slope of the deflection, theta = (l/R) t) and s(x) (stress function,
 // psi = r N_r = (D/l) s); once-integrated equations, L f = f'' + f'/x - f/x^2:
 //   L t = s (1 + t/x) + N/(2 pi x) H(x - a),     L s = -(t + t^2/(2x)),
@@ -141,7 +142,7 @@ struct Constants {
   double N_plus = kNaN, a_plus = kNaN, e_hat_plus = kNaN, c1_plus = kNaN;
   double plate_eigenvalue_at_plus = kNaN;  // clamped_plate_top_eigenvalue(a_plus, c1_plus)
 
-  // Ridge boundary layer (paper: n(2) = 20.83).
+  // Ridge boundary layer: the n(2) of the ring law (paper, Eq. S20; the paper quotes 20.83).
   double ridge_I = kNaN;
   double n2 = kNaN;
   // Independent check of n2: N/a of the full ring branch at a = 20, 30, 40, 60, extrapolated
@@ -149,8 +150,8 @@ struct Constants {
   double n2_ring_extrapolated = kNaN;
 
   // Lower bound as the paper constructs it: the disk branch meets the ring law written with
-  // e = r^2/R, i.e. N = n2 sqrt(e_hat) (paper: N- = 46.8).  a_minus is the DISK contact
-  // radius there; ring_radius_minus = sqrt(e_hat_minus) the ring radius that law assigns.
+  // e = r^2/R, i.e. N = n2 sqrt(e_hat) (paper, Eq. S21; N- = 46.8 there).  a_minus is the DISK
+  // contact radius there; ring_radius_minus = sqrt(e_hat_minus) the ring radius that law assigns.
   double N_minus = kNaN, a_minus = kNaN, e_hat_minus = kNaN, c1_minus = kNaN;
   double ring_radius_minus = kNaN;
   // The same crossing with the paper's rounded n2 = 20.83 instead of the computed n2.

@@ -138,7 +138,8 @@ class SparseGrid {
 };
 
 // Quadratic B-spline weights of a particle at x (in grid units) with respect to the nodes
-// base, base + 1, base + 2, base = floor(x - 0.5).
+// base, base + 1, base + 2, base = floor(x - 0.5): per axis, the basis N_alpha of the transfers
+// (paper, Eqs. S14, S15, S17, S18).
 struct Weights {
   std::int64_t base;
   std::array<double, 3> w;

@@ -118,7 +118,8 @@ void PlateRule::apply(SparseGrid& grid, const StepContext& ctx) {
         const std::size_t a = b * kBlockNodes + static_cast<std::size_t>(l);
         auto& g = grid.nodes[a];
         if (g.m <= 0.0 || g.pz >= 0.0) continue;
-        const double dpn = -g.pz;  // normal impulse given by the plate (upward)
+        // The normal impulse given by the plate (upward): p~ = p - (p . e_z) e_z (paper, Eq. S16).
+        const double dpn = -g.pz;
         g.pz = 0.0;
         loaded.push_back(grid.coords(a));
         normal += dpn;

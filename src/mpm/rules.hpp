@@ -36,8 +36,10 @@ class GridRule {
 inline constexpr std::uint8_t kTagClamped = 1;
 
 // Dirichlet clamp to a rigid body: every node reached by a particle carrying `tag` gets the
-// body's velocity along z (and none sideways). The momentum this removes is the force between
-// shell and body; it is stored in body.clamp_force (force on the body).
+// body's velocity along z (and none sideways), p_a = m_a v_z e_z (the paper's Dirichlet
+// condition of step 2 of its contact analysis, stated in words there, not numbered). The momentum
+// this removes is the force between shell and body; it is stored in body.clamp_force (force on the
+// body).
 class ClampRule final : public GridRule {
  public:
   ClampRule(RigidBody& body, std::uint8_t tag = kTagClamped) : body_(body), tag_(tag) {}
@@ -80,9 +82,10 @@ class ContainerFaceRule final : public GridRule {
 };
 
 // The rigid plate with top surface z = 0: on the node layers z = 0, -dx, ..., -(layers - 1) dx
-// (three by default), momentum moving into the plate (p_z < 0) loses its normal part, and Coulomb
-// friction takes up to mu times that normal impulse from the tangential momentum, never reversing
-// it. The plate's reaction force is the normal impulse per time step.
+// (three by default), momentum moving into the plate (p_z < 0) loses its normal part (paper,
+// Eq. S16), and Coulomb friction takes up to mu times that normal impulse from the tangential
+// momentum, never reversing it. The plate's reaction force is the normal impulse per time step
+// (the paper's F_norm, defined in the text after Eq. S16).
 class PlateRule final : public GridRule {
  public:
   explicit PlateRule(double mu, int layers = 3) : mu_(mu), layers_(layers) {}

@@ -61,7 +61,8 @@ struct Stencil {
   }
 };
 
-// Adds particle n's mass and APIC momentum to the 27 nodes of its stencil (and its tag).
+// Adds particle n's mass and APIC momentum to the 27 nodes of its stencil (and its tag):
+// m_a += m N and p_a += m N (v + C (x_a - x_p)) (paper, Eqs. S14 and S15).
 [[gnu::always_inline]] inline void scatter_particle(SparseGrid& grid, const Particles& p, double dx,
                                                     std::size_t n) {
   const Stencil st(grid, p.x, n, dx);
@@ -104,7 +105,8 @@ struct Stencil {
 }
 
 // Particle i's velocity, affine matrix and position from the nodes of its stencil; returns its
-// squared speed.
+// squared speed. v = sum N p_a / m_a (paper, Eq. S17), C = 4 / dx^2 sum N (p_a / m_a) d^T
+// (paper, Eq. S18), x += dt v.
 [[gnu::always_inline]] inline double gather_particle(const SparseGrid& grid, Particles& p,
                                                      double dx, double dt, std::size_t i) {
   const double inv_dx = 1.0 / dx;
@@ -256,7 +258,9 @@ void Stepper::update_particle_velocities() {
     throw StepError(fmt::format("t = {:.6g} s, step {}: {}", time_, steps_ + 1, e.what()));
   }
   const double dt = options_.dt;
-  const double keep = 1.0 / (1.0 + options_.damping * dt);  // semi-implicit damping
+  // The particle's equation of motion m a = f (paper, Eq. S8) by an explicit step, with the
+  // quasi-static phases' mass-proportional damping taken semi-implicitly.
+  const double keep = 1.0 / (1.0 + options_.damping * dt);
   const std::size_t n = p_.size();
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) {

@@ -87,12 +87,12 @@ class Stepper {
   void step();
 
   // The stages of step(), in order (public for tests and probes).
-  void update_particle_velocities();  // 1. v' = v + dt f / m
-  void particle_to_grid();            // 2. APIC transfer of mass and momentum: 2a then 2b
+  void update_particle_velocities();  // 1. v' = v + dt f / m (paper, Eq. S8)
+  void particle_to_grid();            // 2. APIC mass, momentum (paper, Eqs. S14, S15): 2a, 2b
   void rebuild_grid();                //   2a. the grid's blocks where the particles are, zeroed
   void scatter_to_grid();             //   2b. the particles' mass and momentum onto the nodes
-  void apply_grid_rules();            // 3. clamp, plate, ...
-  void grid_to_particle();            // 4. velocities, affine matrices, positions
+  void apply_grid_rules();            // 3. clamp, plate (paper, Eq. S16), ...
+  void grid_to_particle();            // 4. v, C, x (paper, Eqs. S17, S18)
   void advance_rigid_bodies();        // 5.
 
   [[nodiscard]] const Particles& particles() const { return p_; }

@@ -22,10 +22,13 @@ struct ContactPoint {
 };
 
 struct ContactConstants {
-  ContactPoint lower;  // ring-to-disk estimate: the disk branch meets the ring law (N-)
+  // ring-to-disk estimate: the disk branch (paper, Eq. S19) meets the ring law (paper, Eq. S21),
+  // N-
+  ContactPoint lower;
   ContactPoint upper;  // the disk instability N+ (contact radius of the disk there; apex
                        // displacement of the ring state that carries N+, see docs/theory.md)
-  double n2 = 0.0;     // ring law N = n2 sqrt(e_hat) in the paper's form
+  // ring law N = n2 sqrt(e_hat): the paper's Eq. S21 in rescaled units (Eq. S20 with r = sqrt(e R))
+  double n2 = 0.0;
   // C in U = C E h^(5/2) H^(3/2) / ((1 - nu^2)^(3/4) R), the stored energy of a mirror-buckled
   // cap of height H (for the fully inverted cap, H = R (1 - cos phi)).
   double mirror_energy_prefactor = 0.0;

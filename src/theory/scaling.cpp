@@ -131,6 +131,7 @@ Prediction predict(const config::Case& c, const ContactConstants& constants) {
   p.t_c = t_c(p.moving_mass, E, h, R);
 
   const auto& a = p.alpha = prefactor_bounds(constants, nu);
+  // r* = alpha_r r_c, e* = alpha_e h, F* = alpha_F F_c (paper, Eq. 1); t* = alpha_t t_c.
   p.r_star = {a.alpha_r.lo * p.r_c, a.alpha_r.hi * p.r_c};
   p.e_star = {a.alpha_e.lo * p.e_c, a.alpha_e.hi * p.e_c};
   p.F_star = {a.alpha_F.lo * p.F_c, a.alpha_F.hi * p.F_c};

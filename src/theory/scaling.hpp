@@ -18,30 +18,30 @@ double shell_mass(double R, double h, double phi, double rho);
 // Volume between the inner surface (radius R - h/2) and the plane of its rim circle.
 double cavity_volume(double R, double h, double phi);
 
-// --- Classical shell results
-// ----------------------------------------------------------------------- Zoelly: p_c = 2 E h^2 /
-// (R^2 sqrt(3 (1 - nu^2))).
+// --- Classical shell results ------------------------------------------------------------------
+// Zoelly: p_c = 2 E h^2 / (R^2 sqrt(3 (1 - nu^2))).
 double zoelly_pressure(double E, double h, double R, double nu);
 // Reissner's point-load stiffness of a spherical shell: F / e = 4 E h^2 / (R sqrt(3 (1 - nu^2))).
 double reissner_stiffness(double E, double h, double R, double nu);
 
-// --- Scales of the paper
-// ---------------------------------------------------------------------------
+// --- Scales of the paper ----------------------------------------------------------------------
+// From the text before the paper's Eq. 1 (r_c, e_c, F_c) and after it (t_c, alpha_t), unnumbered.
 double r_c(double h, double R);                      // sqrt(h R)
 double e_c(double h);                                // h
 double F_c(double E, double h, double R);            // E h^3 / R
 double t_c(double m, double E, double h, double R);  // sqrt(m R / (E h^2))
 double alpha_t(double alpha_e, double alpha_F);      // sqrt(3 alpha_e / alpha_F)
 
-// H_l = R (1 - cos phi) - alpha_e h: lift of the container up to the contact transition.
+// H_l = R (1 - cos phi) - alpha_e h: lift of the container up to the contact transition (paper,
+// Eq. 2).
 double lifting_height(double R, double phi, double h, double alpha_e);
-// H_s = alpha_F alpha_e E h^4 / (m g R): flight height from the snap, m g the net weight.
+// H_s = alpha_F alpha_e E h^4 / (m g R): flight height from the snap, m g the net weight (paper,
+// Eq. 3, with alpha_H = alpha_F alpha_e).
 double snap_height(double alpha_F, double alpha_e, double E, double h, double net_weight, double R);
 // Stored energy of the mirror-buckled cap, U = C E h^(5/2) d^(3/2) / ((1 - nu^2)^(3/4) R).
 double mirror_energy(double C, double E, double h, double d, double nu, double R);
 
-// --- The prediction for one case
-// ------------------------------------------------------------------
+// --- The prediction for one case ---------------------------------------------------------------
 // Thrown is observed only, never predicted: the popper left the plate and flew without the snap on
 // the plate (docs/analysis.md, "Outcome").
 enum class Outcome { Jump, Snap, NoSnap, Thrown };
@@ -69,7 +69,8 @@ struct Prediction {
   double zoelly_pc = 0.0, delta_p_j = 0.0;
   // scales
   double r_c = 0.0, e_c = 0.0, F_c = 0.0, t_c = 0.0;
-  // prefactors and the quantities they bound
+  // prefactors and the quantities they bound: r*, e*, F* (paper, Eq. 1), t* = alpha_t t_c,
+  // H_l (paper, Eq. 2), H_s (paper, Eq. 3), H = H_l + H_s
   Prefactors alpha;
   Range r_star, e_star, F_star, t_star, H_l, H_s, H;
   // outcome criteria
