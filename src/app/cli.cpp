@@ -162,7 +162,7 @@ int run_cli(int argc, const char* const* argv, std::ostream& out, std::ostream& 
   CLI::App app{
       "snapjump: predicts and simulates how elastic shells snap and jump.\n"
       "Start with `snapjump predict` (the theory for the paper's default popper), then "
-      "`snapjump run` (its simulated jump, about 2 minutes on two cores)."};
+      "`snapjump run` (its simulated jump; wall time: docs/performance.md)."};
   app.name("snapjump");
   app.require_subcommand(1);
   app.set_version_flag("--version", "snapjump 0.1.0");
