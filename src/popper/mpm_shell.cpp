@@ -77,6 +77,8 @@ MpmShell::MpmShell(const config::Case& c, const Numerics& n, std::function<doubl
   }
   hole_area_ = std::numbers::pi * std::pow(rim_r / count, 2);
   depth_outer_ = outer_rim_z(X) - X.z[body_->mesh().apex];
+  // The particles' forces: internal, gravity, and the gas's pressure on the inner faces as the
+  // surface force of the external forces (paper, Eq. S11).
   forces_ = std::make_unique<hybrid::BodyForces>(*body_, kG, [this](double) { return delta_p_(); });
   // The grid bound assumes speeds up to 2 m/s (a jump of 20 cm); faster particles stop the run
   // with a StepError from the stepper's own CFL check.

@@ -185,6 +185,8 @@ double Popper::wire_tension() const {
   return *case_.popper.wire_stiffness * (counterweight_.z - container_.z);
 }
 
+// The paper's coupling: the pressure from the current volume and amount of air (paper, Eqs. S12,
+// S13), which the next step's forces apply to the shell (paper, Eq. S11).
 void Popper::advance_gas() {
   gas_.advance(model_->dt(), model_->cavity_volume() + case_.gas.container_volume);
 }
