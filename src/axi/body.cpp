@@ -166,7 +166,17 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
 
 template <bool kEnergy>
 double Body::element_loop(const Points& x, Points* f) const {
-  const double mu = material_.mu, lambda = material_.lambda;
+  return fem::with_law(material_,
+                       [&](const auto& shear, const fem::law::LogVolumetric& volumetric) {
+                         return element_loop<kEnergy>(x, f, shear, volumetric);
+                       });
+}
+
+// Pass 0 takes the law's shear part at the full rule, pass 1 its volumetric part at the reduced
+// rule; F = [F11 F12 0; F21 F22 0; 0 0 F33] in (r, z, hoop).
+template <bool kEnergy, typename Shear>
+double Body::element_loop(const Points& x, Points* f, const Shear& shear,
+                          const fem::law::LogVolumetric& volumetric) const {
   double energy = 0.0;
   if (f) {
     f->r.assign(nodes_.size(), 0.0);
@@ -180,7 +190,6 @@ double Body::element_loop(const Points& x, Points* f) const {
       xz[m] = x.z[el[m]];
     }
     double fr[9] = {}, fz[9] = {};
-    // Pass 0: shear part at the full rule; pass 1: bulk part at the reduced rule.
     for (int pass = 0; pass < 2; ++pass) {
       const Rule& rule = pass == 0 ? full_ : reduced_;
       const std::size_t base = e * rule.points;
@@ -193,7 +202,8 @@ double Body::element_loop(const Points& x, Points* f) const {
         const auto [F11, F12, F21, F22, F33] = deformation_at(N, dR, dZ, rho0, xr, xz);
         const double d2 = F11 * F22 - F12 * F21;
         const double J = d2 * F33;
-        if (!(J > 0.0) || !std::isfinite(J)) {
+        const double I1 = F11 * F11 + F12 * F12 + F21 * F21 + F22 * F22 + F33 * F33;
+        if (!(J > 0.0) || !std::isfinite(J) || (pass == 0 && !shear.admissible(I1))) {
           throw fem::InvertedElement(static_cast<int>(e), xr[0], 0.0, xz[0]);
         }
         const double lnJ = std::log(J);
@@ -202,25 +212,21 @@ double Body::element_loop(const Points& x, Points* f) const {
         const double iT33 = 1.0 / F33;
         double P11, P12, P21, P22, P33;
         if (pass == 0) {
-          P11 = mu * (F11 - iT11);
-          P12 = mu * (F12 - iT12);
-          P21 = mu * (F21 - iT21);
-          P22 = mu * (F22 - iT22);
-          P33 = mu * (F33 - iT33);
-          if constexpr (kEnergy) {
-            energy +=
-                rule.weight[qp] *
-                (0.5 * mu * (F11 * F11 + F12 * F12 + F21 * F21 + F22 * F22 + F33 * F33 - 3.0) -
-                 mu * lnJ);
-          }
+          const double a = shear.scale(I1);
+          P11 = shear.stress(a, F11, iT11);
+          P12 = shear.stress(a, F12, iT12);
+          P21 = shear.stress(a, F21, iT21);
+          P22 = shear.stress(a, F22, iT22);
+          P33 = shear.stress(a, F33, iT33);
+          if constexpr (kEnergy) energy += rule.weight[qp] * shear.energy(I1, lnJ);
         } else {
-          const double s = lambda * lnJ;
+          const double s = volumetric.coefficient(lnJ);
           P11 = s * iT11;
           P12 = s * iT12;
           P21 = s * iT21;
           P22 = s * iT22;
           P33 = s * iT33;
-          if constexpr (kEnergy) energy += rule.weight[qp] * 0.5 * lambda * lnJ * lnJ;
+          if constexpr (kEnergy) energy += volumetric.energy(lnJ, rule.weight[qp]);
         }
         if (f) {
           const double w = rule.weight[qp];

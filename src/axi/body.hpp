@@ -1,14 +1,14 @@
 // The cap as an axisymmetric solid: its meridian section (polar angle 0..phi, radius R - h/2 ..
 // R + h/2 about the centre of curvature at the origin, apex on the negative z axis) meshed with
 // structured 9-node quadrilaterals, several through h. Large deformation, Total Lagrangian, the
-// same compressible neo-Hookean energy as the 3D body, with the hoop stretch rho / rho_0 as the
-// third principal stretch.
+// 3D body's material law (fem/constitutive.hpp, the same source), with the hoop stretch
+// rho / rho_0 as the third principal stretch.
 //
-// Volumetric locking at nu near 1/2: the energy is split into the shear part
-// mu/2 (tr(F^T F) - 3) - mu ln J, integrated with 3 x 3 Gauss points, and the bulk part
-// lambda/2 (ln J)^2, integrated with 2 x 2 (selective reduced integration; with a 9-node element
-// this acts as four discontinuous pressures per element). Both parts are the 3D body's energy; only
-// the quadrature of the bulk part differs.
+// Volumetric locking at nu near 1/2: the law's shear part (neo-Hookean:
+// mu/2 (tr(F^T F) - 3) - mu ln J) is integrated with 3 x 3 Gauss points, its volumetric part
+// lambda/2 (ln J)^2 with 2 x 2 (selective reduced integration; with a 9-node element this acts as
+// four discontinuous pressures per element). Only the quadrature of the volumetric part differs
+// from the 3D body's.
 //
 // Node data are (rho, z) pairs in the meridian plane; masses, forces and energies are those of
 // the whole ring (the factor 2 pi rho_0 is in the quadrature weights).
@@ -99,6 +99,9 @@ class Body {
  private:
   template <bool kEnergy>
   double element_loop(const Points& x, Points* f) const;
+  template <bool kEnergy, typename Shear>
+  double element_loop(const Points& x, Points* f, const Shear& shear,
+                      const fem::law::LogVolumetric& volumetric) const;
 
   MeshSpec spec_;
   fem::Material material_;

@@ -75,23 +75,55 @@ Material Material::from_young(double E, double nu, double rho) {
 
 double Material::p_wave_speed() const { return std::sqrt((lambda + 2.0 * mu) / rho); }
 
-bool neo_hookean_stress(const Material& m, const double F[9], double P[9]) {
-  const double J = det3(F);
-  if (!(J > 0.0)) return false;
-  double Finv_t[9];
-  inverse_transpose(F, J, Finv_t);
-  const double c = m.lambda * std::log(J);
-  for (int k = 0; k < 9; ++k) P[k] = m.mu * (F[k] - Finv_t[k]) + c * Finv_t[k];
-  return true;
+Material Material::with_gent(double jm) const {
+  if (!(jm > 0.0 && std::isfinite(jm))) {
+    throw std::invalid_argument(
+        fmt::format("Gent's law needs a positive, finite locking value Jm (got {})", jm));
+  }
+  Material m = *this;
+  m.law = LawKind::gent;
+  m.gent_jm = jm;
+  return m;
 }
 
-double neo_hookean_energy(const Material& m, const double F[9]) {
-  const double J = det3(F);
-  if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
-  double trC = 0.0;
-  for (int k = 0; k < 9; ++k) trC += F[k] * F[k];
-  const double lnJ = std::log(J);
-  return 0.5 * m.mu * (trC - 3.0) - m.mu * lnJ + 0.5 * m.lambda * lnJ * lnJ;
+namespace {
+
+// I1 = tr(F^T F) of a row-major 3x3.
+double first_invariant(const double F[9]) {
+  double I1 = 0.0;
+  for (int k = 0; k < 9; ++k) I1 += F[k] * F[k];
+  return I1;
+}
+
+}  // namespace
+
+bool first_piola_stress(const Material& m, const double F[9], double P[9]) {
+  return with_law(m, [&](const auto& shear, const law::LogVolumetric& volumetric) {
+    const double J = det3(F);
+    if (!(J > 0.0)) return false;
+    double I1 = 0.0;
+    if constexpr (std::decay_t<decltype(shear)>::kNeedsI1) {
+      I1 = first_invariant(F);
+      if (!shear.admissible(I1)) return false;
+    }
+    double Finv_t[9];
+    inverse_transpose(F, J, Finv_t);
+    const double c = volumetric.coefficient(std::log(J));
+    const double a = shear.scale(I1);
+    for (int k = 0; k < 9; ++k) P[k] = shear.stress(a, F[k], Finv_t[k]) + c * Finv_t[k];
+    return true;
+  });
+}
+
+double energy_density(const Material& m, const double F[9]) {
+  return with_law(m, [&](const auto& shear, const law::LogVolumetric& volumetric) {
+    const double J = det3(F);
+    if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
+    const double I1 = first_invariant(F);
+    if (!shear.admissible(I1)) return std::numeric_limits<double>::infinity();
+    const double lnJ = std::log(J);
+    return shear.energy(I1, lnJ) + volumetric.energy(lnJ);
+  });
 }
 
 InvertedElement::InvertedElement(int e, double px, double py, double pz)
@@ -374,20 +406,30 @@ namespace {
   }
 }
 
-// neo_hookean_stress at the four points at once (F and P as for deformation_gradients): the same
-// expressions point by point (det3_of, inverse_transpose_of), so each point's P has
-// neo_hookean_stress's bits; the logarithm stays the scalar library call. False where some point's
-// J is not positive.
-[[gnu::always_inline]] inline bool neo_hookean_stresses(const Material& m, const double F[9][kQp],
-                                                        double P[9][kQp]) {
-  double J[kQp], c[kQp];
+// first_piola_stress at the four points at once (F and P as for deformation_gradients): the same
+// expressions point by point (det3_of, inverse_transpose_of, the law's), so each point's P has
+// first_piola_stress's bits; the logarithm stays the scalar library call. False where some point's
+// J is not positive or the law is not defined.
+template <typename Shear>
+[[gnu::always_inline]] inline bool stresses_at_points(const Shear& shear,
+                                                      const law::LogVolumetric& volumetric,
+                                                      const double F[9][kQp], double P[9][kQp]) {
+  double J[kQp], c[kQp], a[kQp] = {};
   bool positive = true;
 #pragma omp simd
   for (int q = 0; q < kQp; ++q) J[q] = det3_of([&F, q](int k) { return F[k][q]; });
   for (int q = 0; q < kQp; ++q) positive = positive && J[q] > 0.0;
   if (!positive) return false;
+  if constexpr (Shear::kNeedsI1) {
+    for (int q = 0; q < kQp; ++q) {
+      double I1 = 0.0;
+      for (int k = 0; k < 9; ++k) I1 += F[k][q] * F[k][q];
+      if (!shear.admissible(I1)) return false;
+      a[q] = shear.scale(I1);
+    }
+  }
   // Scalar on purpose: a vector logarithm (libmvec, -ffast-math) would round differently.
-  for (int q = 0; q < kQp; ++q) c[q] = m.lambda * std::log(J[q]);
+  for (int q = 0; q < kQp; ++q) c[q] = volumetric.coefficient(std::log(J[q]));
   double T[9][kQp];  // F^-T
 #pragma omp simd
   for (int q = 0; q < kQp; ++q) {
@@ -396,7 +438,11 @@ namespace {
   }
   for (int k = 0; k < 9; ++k) {
 #pragma omp simd
-    for (int q = 0; q < kQp; ++q) P[k][q] = m.mu * (F[k][q] - T[k][q]) + c[q] * T[k][q];
+    for (int q = 0; q < kQp; ++q) {
+      // A law whose factor does not depend on I1 gets it as a constant (no array in the loop).
+      const double s = Shear::kNeedsI1 ? a[q] : shear.scale(0.0);
+      P[k][q] = shear.stress(s, F[k][q], T[k][q]) + c[q] * T[k][q];
+    }
   }
   return true;
 }
@@ -406,6 +452,16 @@ namespace {
 template <bool kEnergy>
 [[gnu::always_inline]] inline bool Body::element_pass(int e, const mesh::Points& x,
                                                       double* out) const {
+  return with_law(material_, [&](const auto& shear, const law::LogVolumetric& volumetric) {
+    return element_pass<kEnergy>(e, x, shear, volumetric, out);
+  });
+}
+
+template <bool kEnergy, typename Shear>
+[[gnu::always_inline]] inline bool Body::element_pass(int e, const mesh::Points& x,
+                                                      const Shear& shear,
+                                                      const law::LogVolumetric& volumetric,
+                                                      double* out) const {
   const auto es = static_cast<std::size_t>(e);
   double xe[kTetNodes][3];
   gather(mesh_.tets[es], x, xe);
@@ -414,9 +470,8 @@ template <bool kEnergy>
   } else {
     std::fill(out, out + 3 * kTetNodes, 0.0);
   }
-  // With the bulk at the centroid, the four points carry the rest of the energy (lambda = 0).
-  Material at_points = material_;
-  if (bulk_ == BulkRule::centroid) at_points.lambda = 0.0;
+  // With the bulk at the centroid, the four points carry the rest of the energy.
+  const law::LogVolumetric at_points{bulk_ == BulkRule::centroid ? 0.0 : volumetric.lambda};
   const double* G = &grad_[es * kQp * kGradStride];
   const double* w = &weight_[es * kQp];
   double F[9][kQp];
@@ -425,13 +480,18 @@ template <bool kEnergy>
     for (int q = 0; q < kQp; ++q) {
       double Fq[9];
       at_point(F, q, Fq);
-      const double psi = neo_hookean_energy(at_points, Fq);
+      const double J = det3(Fq);
+      double I1 = 0.0;
+      for (int k = 0; k < 9; ++k) I1 += Fq[k] * Fq[k];
+      if (!(J > 0.0) || !shear.admissible(I1)) return false;
+      const double lnJ = std::log(J);
+      const double psi = shear.energy(I1, lnJ) + at_points.energy(lnJ);
       if (!std::isfinite(psi)) return false;
       *out += w[q] * psi;
     }
   } else {
     double P[9][kQp];
-    if (!neo_hookean_stresses(at_points, F, P)) return false;
+    if (!stresses_at_points(shear, at_points, F, P)) return false;
     add_nodal_forces(P, G, w, out);
   }
   if (bulk_ == BulkRule::centroid) {
@@ -443,19 +503,40 @@ template <bool kEnergy>
     if (!(J > 0.0)) return false;
     const double lnJ = std::log(J);
     if constexpr (kEnergy) {
-      *out += wc * 0.5 * material_.lambda * lnJ * lnJ;
+      *out += volumetric.energy(lnJ, wc);
     } else {
       double P[9];  // lambda ln J F^-T
       inverse_transpose(Fc, J, P);
-      for (double& v : P) v *= material_.lambda * lnJ;
+      const double c = volumetric.coefficient(lnJ);
+      for (double& v : P) v *= c;
       add_point_forces(P, g, wc, out);
     }
   }
   return true;
 }
 
-SNAPJUMP_AVX2 bool Body::element_forces_wide(int e, const mesh::Points& x, double* out) const {
-  return element_pass<false>(e, x, out);
+template <typename Shear>
+SNAPJUMP_AVX2 bool Body::element_forces_wide(int e, const mesh::Points& x, const Shear& shear,
+                                             const law::LogVolumetric& volumetric,
+                                             double* out) const {
+  return element_pass<false>(e, x, shear, volumetric, out);
+}
+
+// Inside the force pass's parallel region: every element's nodal forces into its slots of ef
+// under one law (chosen once per pass, not per element).
+template <typename Shear>
+void Body::element_forces(const mesh::Points& x, const Shear& shear,
+                          const law::LogVolumetric& volumetric, double* ef,
+                          std::atomic<int>& bad) const {
+  const long ne = static_cast<long>(mesh_.tets.size());
+#pragma omp for schedule(static)
+  for (long e = 0; e < ne; ++e) {
+    double* out = ef + 3 * kTetNodes * e;
+    const int el = static_cast<int>(e);
+    const bool ok = wide_ ? element_forces_wide(el, x, shear, volumetric, out)
+                          : element_pass<false>(el, x, shear, volumetric, out);
+    if (!ok) note_inverted(bad, el);
+  }
 }
 
 namespace {
@@ -523,7 +604,6 @@ void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {
 // has the same order at any thread count.
 void Body::internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch& scratch) const {
   const std::size_t n = num_nodes();
-  const long ne = static_cast<long>(mesh_.tets.size());
   const long nn = static_cast<long>(n);
   f.x.resize(n);
   f.y.resize(n);
@@ -533,13 +613,9 @@ void Body::internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch&
   std::atomic<int> bad{-1};
 #pragma omp parallel
   {
-#pragma omp for schedule(static)
-    for (long e = 0; e < ne; ++e) {
-      double* out = ef + 3 * kTetNodes * e;
-      const bool ok = wide_ ? element_forces_wide(static_cast<int>(e), x, out)
-                            : element_pass<false>(static_cast<int>(e), x, out);
-      if (!ok) note_inverted(bad, static_cast<int>(e));
-    }
+    with_law(material_, [&](const auto& shear, const law::LogVolumetric& volumetric) {
+      element_forces(x, shear, volumetric, ef, bad);
+    });
     // (the loop's barrier: every slot is written, and `bad` is final)
     if (bad.load() < 0) {
 #pragma omp for schedule(static)
@@ -596,7 +672,7 @@ std::vector<double> Body::element_energy_density(const mesh::Points& x) const {
       const double w = weight_[e * kQp + q];
       double Fq[9];
       at_point(F, q, Fq);
-      const double psi = neo_hookean_energy(material_, Fq);
+      const double psi = energy_density(material_, Fq);
       W += w * (std::isfinite(psi) ? psi : 0.0);
       V += w;
     }

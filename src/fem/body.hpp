@@ -1,5 +1,6 @@
 // The shell as a finite-element body: Total Lagrangian 10-node tetrahedra with the paper's
-// compressible neo-Hookean energy, lumped masses by diagonal scaling, gravity, the pressure
+// compressible neo-Hookean energy (or another law of
+// fem/constitutive.hpp), lumped masses by diagonal scaling, gravity, the pressure
 // follower load on the inner faces and the enclosed cavity volume.
 //
 // The body knows nothing about grids or time stepping: given current node positions it returns
@@ -7,29 +8,51 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "core/wide.hpp"
+#include "fem/constitutive.hpp"
 #include "mesh/mesh.hpp"
 
 namespace snapjump::fem {
 
+// Which material law (fem/constitutive.hpp) the body's shear part follows.
+enum class LawKind { neo_hookean, gent };
+
 struct Material {
-  double mu = 0.0;      // shear modulus [Pa]
-  double lambda = 0.0;  // first Lame constant [Pa]
+  double mu = 0.0;      // shear modulus at small strain [Pa]
+  double lambda = 0.0;  // first Lame constant at small strain [Pa]
   double rho = 0.0;     // reference density [kg/m^3]
+  LawKind law = LawKind::neo_hookean;
+  double gent_jm = 0.0;  // Gent's locking value of I1 - 3 (law == gent)
   // Lame constants from Young's modulus and Poisson's ratio; needs -1 < nu < 1/2.
   static Material from_young(double E, double nu, double rho);
-  [[nodiscard]] double p_wave_speed() const;  // sqrt((lambda + 2 mu) / rho)
+  // The same moduli under Gent's law with locking value jm > 0.
+  [[nodiscard]] Material with_gent(double jm) const;
+  [[nodiscard]] double p_wave_speed() const;  // sqrt((lambda + 2 mu) / rho), at small strain
 };
 
-// psi(F) = mu/2 (tr(F^T F) - 3) - mu ln J + lambda/2 (ln J)^2 and its first Piola stress
-// P = mu (F - F^-T) + lambda ln J F^-T. F row-major 3x3. Return false when det F <= 0.
-bool neo_hookean_stress(const Material& m, const double F[9], double P[9]);
-double neo_hookean_energy(const Material& m, const double F[9]);
+// f(shear law, volumetric part) for m's law: the one place a Material becomes law objects.
+// mu and lambda are the small-strain moduli for every law: Gent's shear part adds 2 mu / Jm to
+// the first Lame constant at small strain, so its volumetric part takes lambda - 2 mu / Jm.
+template <typename Fn>
+decltype(auto) with_law(const Material& m, Fn&& f) {
+  if (m.law == LawKind::gent) {
+    return f(law::Gent{m.mu, m.gent_jm}, law::LogVolumetric{m.lambda - 2.0 * m.mu / m.gent_jm});
+  }
+  return f(law::NeoHookean{m.mu}, law::LogVolumetric{m.lambda});
+}
+
+// m's strain energy density psi(F) and its first Piola stress P = dpsi/dF (fem/constitutive.hpp;
+// the neo-Hookean law: psi = mu/2 (tr(F^T F) - 3) - mu ln J + lambda/2 (ln J)^2,
+// P = mu (F - F^-T) + lambda ln J F^-T). F row-major 3x3. first_piola_stress returns false and
+// energy_density +inf where det F <= 0 or the law is not defined at F.
+bool first_piola_stress(const Material& m, const double F[9], double P[9]);
+double energy_density(const Material& m, const double F[9]);
 
 // An element turned inside out (det F <= 0) or a non-finite force: the step cannot go on.
 class InvertedElement : public std::runtime_error {
@@ -125,11 +148,22 @@ class Body {
 
  private:
   // Element e at positions x: its strain energy into out[0] (kEnergy) or its nodal forces into
-  // out[0..30). False where a quadrature point is inverted.
+  // out[0..30). False where a quadrature point is inverted or outside the law's range.
   template <bool kEnergy>
   inline bool element_pass(int e, const mesh::Points& x, double* out) const;
+  // The same for a given law (with_law's arguments).
+  template <bool kEnergy, typename Shear>
+  inline bool element_pass(int e, const mesh::Points& x, const Shear& shear,
+                           const law::LogVolumetric& volumetric, double* out) const;
   // element_pass<false> compiled for AVX2 (x86-64 builds only).
-  bool element_forces_wide(int e, const mesh::Points& x, double* out) const;
+  template <typename Shear>
+  bool element_forces_wide(int e, const mesh::Points& x, const Shear& shear,
+                           const law::LogVolumetric& volumetric, double* out) const;
+  // The element loop of internal_forces (an orphaned `omp for`); bad: the lowest failing element.
+  template <typename Shear>
+  void element_forces(const mesh::Points& x, const Shear& shear,
+                      const law::LogVolumetric& volumetric, double* ef,
+                      std::atomic<int>& bad) const;
   // Throws std::out_of_range naming `what` unless element e and its point q exist.
   void check_point(std::size_t e, int q, const char* what) const;
 

@@ -56,32 +56,32 @@ TEST(NeoHookean, StressAtIdentityIsZeroAndMatchesEnergyDerivative) {
   const auto mat = Material::from_young(1.2e6, 0.45, 1160.0);
   const double I[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
   double P[9];
-  ASSERT_TRUE(neo_hookean_stress(mat, I, P));
+  ASSERT_TRUE(first_piola_stress(mat, I, P));
   for (double p : P) EXPECT_NEAR(p, 0.0, 1e-9);
-  EXPECT_NEAR(neo_hookean_energy(mat, I), 0.0, 1e-12);
+  EXPECT_NEAR(energy_density(mat, I), 0.0, 1e-12);
   // P = d psi / dF by central differences at a general F
   const double F[9] = {1.1, 0.05, -0.02, 0.03, 0.95, 0.04, -0.01, 0.02, 1.05};
-  ASSERT_TRUE(neo_hookean_stress(mat, F, P));
+  ASSERT_TRUE(first_piola_stress(mat, F, P));
   for (int k = 0; k < 9; ++k) {
     double Fp[9], Fm[9];
     std::copy(F, F + 9, Fp);
     std::copy(F, F + 9, Fm);
     Fp[k] += 1e-7;
     Fm[k] -= 1e-7;
-    const double d = (neo_hookean_energy(mat, Fp) - neo_hookean_energy(mat, Fm)) / 2e-7;
+    const double d = (energy_density(mat, Fp) - energy_density(mat, Fm)) / 2e-7;
     EXPECT_NEAR(P[k], d, 1e-6 * mat.mu) << k;
   }
   // small strain: P = 2 mu eps + lambda tr(eps) I; uniaxial stretch 1e-6 gives sigma_xx = (lambda +
   // 2 mu) eps
   const double Fs[9] = {1 + 1e-6, 0, 0, 0, 1, 0, 0, 0, 1};
-  ASSERT_TRUE(neo_hookean_stress(mat, Fs, P));
+  ASSERT_TRUE(first_piola_stress(mat, Fs, P));
   EXPECT_NEAR(P[0], (mat.lambda + 2 * mat.mu) * 1e-6, 1e-5 * (mat.lambda + 2 * mat.mu) * 1e-6);
   // Lame constants of E = 1.2 MPa, nu = 0.45: mu = E / 2.9 = 413793.1, lambda = 3.7241379e6
   EXPECT_NEAR(mat.mu, 413793.103, 1e-3);
   EXPECT_NEAR(mat.lambda, 3724137.93, 1e-2);
   // an inverted F is refused
   const double Finv[9] = {-1, 0, 0, 0, 1, 0, 0, 0, 1};
-  EXPECT_FALSE(neo_hookean_stress(mat, Finv, P));
+  EXPECT_FALSE(first_piola_stress(mat, Finv, P));
 }
 
 TEST(Body, RejectsIncompressibleNu) {
@@ -143,7 +143,7 @@ TEST(Body, AffinePatchTestReproducesTheAnalyticStress) {
     mesh::Points f;
     body.internal_forces(x, f);
     double P[9];
-    ASSERT_TRUE(neo_hookean_stress(body.material(), A, P));
+    ASSERT_TRUE(first_piola_stress(body.material(), A, P));
     const auto& X = body.mesh().nodes;
     double moment[9] = {};
     for (std::size_t a = 0; a < X.size(); ++a) {
@@ -158,7 +158,7 @@ TEST(Body, AffinePatchTestReproducesTheAnalyticStress) {
     double pmax = 0;
     for (double p : P) pmax = std::max(pmax, std::abs(p));
     for (int k = 0; k < 9; ++k) EXPECT_NEAR(moment[k], -P[k] * V, 1e-9 * pmax * V) << k;
-    EXPECT_NEAR(body.strain_energy(x), V * neo_hookean_energy(body.material(), A), 1e-9 * pmax * V);
+    EXPECT_NEAR(body.strain_energy(x), V * energy_density(body.material(), A), 1e-9 * pmax * V);
   }
 }
 
@@ -431,7 +431,7 @@ TEST(Body, GatheredPressureLoadAndVolumeEqualTheFaceByFaceSums) {
 
 // The force loop works on an element's four quadrature points side by side (vectors); each
 // element's nodal forces and energy must still be the bits of a plain loop over the points, one
-// after the other: F summed node by node, neo_hookean_stress and neo_hookean_energy at the point,
+// after the other: F summed node by node, first_piola_stress and energy_density at the point,
 // the point's forces w P dN/dX subtracted point after point, the energies added likewise.
 TEST(Body, FourPointsAtOnceGiveTheBitsOfAPointByPointLoop) {
   const auto& body = coarse_cap();  // the bulk at the four points (the default)
@@ -461,14 +461,14 @@ TEST(Body, FourPointsAtOnceGiveTheBitsOfAPointByPointLoop) {
         }
       }
       double P[9];
-      ASSERT_TRUE(neo_hookean_stress(body.material(), F, P));
+      ASSERT_TRUE(first_piola_stress(body.material(), F, P));
       for (int a = 0; a < 10; ++a) {
         for (int i = 0; i < 3; ++i) {
           slot[3 * a + i] -=
               w * (P[3 * i] * g[3 * a] + P[3 * i + 1] * g[3 * a + 1] + P[3 * i + 2] * g[3 * a + 2]);
         }
       }
-      element_energy += w * neo_hookean_energy(body.material(), F);
+      element_energy += w * energy_density(body.material(), F);
     }
     for (int k = 0; k < 30; ++k) differ += scratch.element_forces[30 * e + k] != slot[k] ? 1 : 0;
     energy += element_energy;
