@@ -34,6 +34,10 @@ constexpr KeySpec kKeys[] = {
      "Poisson's ratio", +[](Case& c) { return &c.material.nu; }},
     {"material", "rho", "rho", Dimension::Density, false, 1160.0, "1160 kg/m^3", "1160 kg/m^3",
      "density", +[](Case& c) { return &c.material.rho; }},
+    {"material", "gent_jm", "gent-jm", Dimension::Dimensionless, false, std::nullopt, "", "20",
+     "Gent's locking value Jm of I1 - 3 (needed by material.law = \"Gent\"; no default: it is "
+     "the rubber's own, from its stress-stretch curve)",
+     nullptr, +[](Case& c) { return &c.material.gent_jm; }},
     {"popper", "net_weight", "net-weight", Dimension::Force, true, std::nullopt, "", "0.48 N",
      "net weight mg: the popper's weight less the counterweight's",
      +[](Case& c) { return &c.popper.net_weight; }},
@@ -87,6 +91,7 @@ constexpr std::string_view kResolutionKey = "resolution";
 constexpr std::string_view kLayersKey = "elements_through_thickness";
 constexpr std::string_view kModelKey = "model";
 constexpr std::string_view kBulkKey = "bulk_integration";
+constexpr std::string_view kLawKey = "law";
 constexpr std::string_view kMeshKey = "mesh";
 constexpr std::string_view kTitleKey = "title";
 
@@ -148,6 +153,7 @@ std::string keys_of(std::string_view table) {
   if (table == "numerics")
     out += fmt::format(", {}, {}, {}, {}", kModelKey, kResolutionKey, kLayersKey, kBulkKey);
   if (table == "shell") out += fmt::format(", {}", kMeshKey);
+  if (table == "material") out += fmt::format(", {}", kLawKey);
   return out;
 }
 
@@ -250,6 +256,10 @@ class Reader {
       }
       if (table_name == "numerics" && name == kModelKey) {
         c.numerics.model = parsed_string(node, key, table_name, parse_model, kModelChoices);
+        continue;
+      }
+      if (table_name == "material" && name == kLawKey) {
+        c.material.law = parsed_string(node, key, table_name, parse_law, kLawChoices);
         continue;
       }
       if (table_name == "numerics" && name == kBulkKey) {
@@ -404,6 +414,16 @@ Case build(const Reader& r, Case c) {
   check(c.material.nu > -1.0 && c.material.nu <= 0.5,
         fmt::format("{} must lie in (-1, 0.5]", r.where(spec("material", "nu"))));
   positive("material", "rho", c.material.rho);
+  if (c.material.law == Law::Gent) {
+    check(c.material.gent_jm.has_value(),
+          "material.law = \"Gent\" needs material.gent_jm, the rubber's locking value of I1 - 3 "
+          "(no default)");
+    if (c.material.gent_jm) positive("material", "gent_jm", *c.material.gent_jm);
+  } else {
+    check(!c.material.gent_jm.has_value(),
+          fmt::format("{} is a parameter of Gent's law: give material.law = \"Gent\" with it",
+                      r.where(spec("material", "gent_jm"))));
+  }
   positive("popper", "net_weight", c.popper.net_weight);
   positive("popper", "mass", c.popper.mass);
   check(c.popper.mass * kStandardGravity >= c.popper.net_weight * (1.0 - 1e-12),
@@ -499,6 +519,15 @@ const ResolutionPreset& preset(Resolution r) {
   return kDefault;
 }
 
+std::optional<Law> parse_law(std::string_view text) {
+  for (const auto l : {Law::NeoHookean, Law::Gent}) {
+    if (text == to_string(l)) return l;
+  }
+  return std::nullopt;
+}
+
+std::string_view to_string(Law l) { return l == Law::Gent ? "Gent" : "neo-Hookean"; }
+
 std::optional<BulkIntegration> parse_bulk_integration(std::string_view text) {
   for (const auto b : {BulkIntegration::Full, BulkIntegration::Reduced}) {
     if (text == to_string(b)) return b;
@@ -537,6 +566,9 @@ std::string to_toml(const Case& c) {
     } else if (!replaced_by_absolute_value(k, c)) {
       insert(t, k, *k.field(fields));
     }
+  }
+  if (c.material.law != Law::NeoHookean) {
+    tables["material"].insert("law", std::string(to_string(c.material.law)));
   }
   auto& shell = tables["shell"];
   if (!c.shell.mesh.empty()) shell.insert("mesh", c.shell.mesh);

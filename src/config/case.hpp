@@ -34,10 +34,20 @@ struct Shell {
   std::string mesh;
 };
 
+// The shell's material law (fem/constitutive.hpp): the paper's compressible neo-Hookean solid, or
+// Gent's, which stiffens as the chains near their locking stretch. E and nu are the small-strain
+// moduli under either.
+enum class Law { NeoHookean, Gent };
+std::string_view to_string(Law l);
+std::optional<Law> parse_law(std::string_view text);
+inline constexpr std::string_view kLawChoices = R"("neo-Hookean" or "Gent")";
+
 struct Material {
   double E = 0.0;    // Young's modulus [Pa]
   double nu = 0.0;   // Poisson's ratio [-]
   double rho = 0.0;  // density [kg/m^3]
+  Law law = Law::NeoHookean;
+  std::optional<double> gent_jm;  // Gent's locking value of I1 - 3 [-] (law = Gent only)
 };
 
 // The apparatus (paper, Fig. 1(d)): the popper (shell, acrylic container, the rail's two shafts

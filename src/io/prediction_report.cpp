@@ -89,8 +89,11 @@ void write_table(std::ostream& out, const config::Case& c, const theory::Predict
                "as it is that cap (docs/shells.md)\n",
                c.shell.mesh);
   }
-  fmt::print(out, "  material      E = {} MPa, nu = {}, rho = {} kg/m^3\n",
-             number(c.material.E * 1e-6), number(c.material.nu), number(c.material.rho));
+  fmt::print(out, "  material      E = {} MPa, nu = {}, rho = {} kg/m^3, {}\n",
+             number(c.material.E * 1e-6), number(c.material.nu), number(c.material.rho),
+             c.material.law == config::Law::Gent
+                 ? fmt::format("Gent's law, Jm = {}", number(*c.material.gent_jm))
+                 : std::string("neo-Hookean"));
   fmt::print(out,
              "  popper        mg = {} N, popper {} g + counterweight {} g = m = {} g, wire {}  "
              "(E h^2 / mg = {:.4g})\n",
@@ -148,6 +151,9 @@ nlohmann::json case_to_json(const config::Case& c) {
           {"E", c.material.E},
           {"nu", c.material.nu},
           {"rho", c.material.rho},
+          {"law", std::string(config::to_string(c.material.law))},
+          {"gent_jm",
+           c.material.gent_jm ? nlohmann::json(*c.material.gent_jm) : nlohmann::json(nullptr)},
           {"net_weight", c.popper.net_weight},
           {"popper_mass", c.popper.mass},
           {"counterweight", c.popper.counterweight()},

@@ -10,6 +10,7 @@
 
 #include "axi/static_branch.hpp"
 #include "io/vtu.hpp"
+#include "popper/material.hpp"
 #include "popper/state_io.hpp"
 
 namespace snapjump::popper {
@@ -25,7 +26,7 @@ axi::Body make_body(const config::Case& c, const Numerics& n) {
                                  .through = n.axi_through,
                                  .along = n.axi_along,
                                  .reduced_bulk = n.reduced_bulk},
-                   fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+                   body_material(c.material));
 }
 
 }  // namespace

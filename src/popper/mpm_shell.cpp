@@ -10,6 +10,7 @@
 #include "io/vtu.hpp"
 #include "mesh/msh_reader.hpp"
 #include "parallel/threads.hpp"
+#include "popper/material.hpp"
 #include "popper/state_io.hpp"
 
 namespace snapjump::popper {
@@ -22,7 +23,7 @@ std::unique_ptr<fem::Body> make_body(const config::Case& c, const Numerics& n) {
   // Particles in space order: the transfers' threads then share fewer cache lines.
   mesh::sort_along_curve(m);
   return std::make_unique<fem::Body>(
-      std::move(m), fem::Material::from_young(c.material.E, c.material.nu, c.material.rho),
+      std::move(m), body_material(c.material),
       n.reduced_bulk ? fem::BulkRule::centroid : fem::BulkRule::full);
 }
 

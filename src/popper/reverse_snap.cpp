@@ -7,6 +7,7 @@
 
 #include "axi/body.hpp"
 #include "axi/static_branch.hpp"
+#include "popper/material.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::popper {
@@ -16,7 +17,7 @@ ReverseSnap reverse_snap(const config::Case& c) {
   const int along = axi::elements_along(c.shell.R, c.shell.h, c.shell.phi, through);
   const axi::Body body(
       {.R = c.shell.R, .h = c.shell.h, .phi = c.shell.phi, .through = through, .along = along},
-      fem::Material::from_young(c.material.E, c.material.nu, c.material.rho));
+      body_material(c.material));
   axi::BranchOptions o;
   o.p_ref = theory::zoelly_pressure(c.material.E, c.shell.h, c.shell.R, c.material.nu);
   // Steps of 0.1 find the same extrema as 0.02 to 0.01 % on the default shell (docs).

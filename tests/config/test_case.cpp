@@ -260,6 +260,26 @@ TEST(CaseFile, BulkIntegrationIsFullOrReduced) {
   expect_error(kMinimal + "[numerics]\nbulk = \"full\"\n", {"bulk_integration"});
 }
 
+TEST(CaseFile, TheLawIsNeoHookeanUnlessGentWithItsLockingValue) {
+  EXPECT_EQ(parse_case(kMinimal, "case.toml").material.law, Law::NeoHookean);
+  const auto gent =
+      replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2 MPa\"\nlaw = \"Gent\"\ngent_jm = 20");
+  const auto c = parse_case(gent, "case.toml");
+  EXPECT_EQ(c.material.law, Law::Gent);
+  EXPECT_EQ(c.material.gent_jm, 20.0);
+  // Written and read back: the law and its parameter survive.
+  const auto r = parse_case(to_toml(c), "written.toml");
+  EXPECT_EQ(r.material.law, Law::Gent);
+  EXPECT_EQ(r.material.gent_jm, 20.0);
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2 MPa\"\nlaw = \"Gent\""),
+               {"material.law = \"Gent\" needs material.gent_jm"});
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2 MPa\"\ngent_jm = 20"),
+               {"material.gent_jm", "Gent's law"});
+  expect_error(replace(gent, "gent_jm = 20", "gent_jm = -1"), {"material.gent_jm", "positive"});
+  expect_error(replace(kMinimal, "E = \"1.2 MPa\"", "E = \"1.2 MPa\"\nlaw = \"Mooney\""),
+               {"case.toml:", "material.law must be \"neo-Hookean\" or \"Gent\""});
+}
+
 TEST(CaseFile, BadOverrideNamesTheFlag) {
   expect_error(kMinimal, {"--R", "shell.R", "is a mass"}, {{"shell.R", "30 g", "--R"}});
 }
