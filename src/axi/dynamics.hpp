@@ -1,4 +1,5 @@
-// Explicit dynamics of the axisymmetric body: central differences (kick, then drift) on lumped
+// Explicit dynamics of the axisymmetric body: m a = f_ext + f_int (paper, Eq. S8) by central
+// differences (kick, then drift) on lumped
 // masses, with the rim either held in place or glued to the rigid container, and the plate z = 0
 // acting exactly on the outer surface's nodes (no grid, no standoff).
 //

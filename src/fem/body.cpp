@@ -253,7 +253,8 @@ Body::Body(mesh::Mesh mesh, const Material& material, BulkRule bulk)
       }
     }
   }
-  // The paper's diagonal scaling: m_a proportional to the integral of N_a^2, summing to rho V.
+  // The paper's diagonal scaling (paper, Eq. S9): m_a proportional to the integral of N_a^2,
+  // summing to rho V.
   total_mass_ = material_.rho * volume_;
   double sum_n2 = 0.0;
   for (double v : n2) sum_n2 += v;
@@ -599,6 +600,7 @@ void Body::internal_forces(const mesh::Points& x, mesh::Points& f) const {
   internal_forces(x, f, scratch);
 }
 
+// f_a = -sum over points of w P(F) dN_a/dX (paper, Eq. S10).
 // One parallel region: each element's nodal forces into its own slots, then each node adds up the
 // slots of its elements in element order. No two threads write one value, and every node's sum
 // has the same order at any thread count.

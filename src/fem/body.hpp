@@ -114,8 +114,8 @@ class Body {
     std::vector<double> element_forces;  // [element][node][3]
     std::vector<double> face_normals;    // [inner face][quadrature point][3]
   };
-  // f = -dW/dx at positions x (overwrites f). Throws InvertedElement (the lowest-numbered
-  // inverted element). The same bits at any thread count.
+  // f = -dW/dx at positions x (overwrites f; paper, Eq. S10). Throws InvertedElement (the
+  // lowest-numbered inverted element). The same bits at any thread count.
   void internal_forces(const mesh::Points& x, mesh::Points& f, ForceScratch& scratch) const;
   void internal_forces(const mesh::Points& x, mesh::Points& f) const;
   // Throws FoldedElement for the lowest-numbered element whose det F is not proven positive over
@@ -128,7 +128,8 @@ class Body {
   [[nodiscard]] std::vector<double> element_energy_density(const mesh::Points& x) const;
 
   // f += the follower load of a pressure difference dp (outside minus inside) on the current
-  // inner faces: f_a = -dp * integral of N_a n dA, n out of the cavity. Equals -dp dV/dx_a.
+  // inner faces: f_a = -dp * integral of N_a n dA, n out of the cavity. Equals -dp dV/dx_a
+  // (paper, Eq. S11).
   void add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f) const;
   void add_pressure_forces(const mesh::Points& x, double dp, mesh::Points& f,
                            ForceScratch& scratch) const;
@@ -138,7 +139,7 @@ class Body {
   // g_a = integral over the inner faces of N_a n dA = dV/dx_a for every node off the rim.
   void cavity_volume_gradient(const mesh::Points& x, mesh::Points& g) const;
 
-  // f_z -= m_a g for every node (gravity on the lumped masses).
+  // f_z -= m_a g for every node (gravity on the lumped masses; paper, Eq. S11).
   void add_gravity(double g, mesh::Points& f) const;
 
   // Whether internal_forces runs the elements' AVX2 version (core/wide.hpp): on where the

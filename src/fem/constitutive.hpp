@@ -41,8 +41,8 @@ struct LogVolumetric {
   }
 };
 
-// The compressible neo-Hookean law of the paper: psi_s = mu/2 (I1 - 3) - mu ln J, hence
-// P_s = mu (F - F^-T).
+// The compressible neo-Hookean law of the paper (paper, Eq. S3): psi_s = mu/2 (I1 - 3) - mu ln J,
+// hence P_s = mu (F - F^-T).
 struct NeoHookean {
   double mu = 0.0;  // shear modulus [Pa]
   static constexpr bool kNeedsI1 = false;

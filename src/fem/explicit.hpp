@@ -1,4 +1,5 @@
-// A plain explicit driver for the body alone: central differences (leapfrog) with optional
+// A plain explicit driver for the body alone: m a = f_ext + f_int (paper, Eq. S8) by central
+// differences (leapfrog), with optional
 // mass-proportional damping, the rim clamped to a frame that may move along z. Used by the
 // tests and by quasi-static preparation phases.
 #pragma once
