@@ -74,6 +74,23 @@ constexpr KeySpec kKeys[] = {
     {"numerics", "element_size", "element-size", Dimension::Length, false, std::nullopt, "", "1 mm",
      "target mesh element size (from the resolution preset when absent)", nullptr,
      +[](Case& c) { return &c.numerics.element_size; }},
+    {"numerics", "rim_element_size", "rim-element-size", Dimension::Length, false, std::nullopt, "",
+     "1 mm",
+     "3D: element size next to the rim, where the inverted cap folds (with numerics.rim_band; "
+     "uniform at element_size when absent)",
+     nullptr, +[](Case& c) { return &c.numerics.rim_element_size; }},
+    {"numerics", "rim_band", "rim-band", Dimension::Length, false, std::nullopt, "", "4 mm",
+     "3D: arc length from the rim over which numerics.rim_element_size holds; beyond it the "
+     "elements grow by 30 % of the distance up to element_size",
+     nullptr, +[](Case& c) { return &c.numerics.rim_band; }},
+    {"numerics", "contact_element_size", "contact-element-size", Dimension::Length, false,
+     std::nullopt, "", "2 mm",
+     "3D: element size around the apex, where the plate's contact spreads (with "
+     "numerics.contact_band)",
+     nullptr, +[](Case& c) { return &c.numerics.contact_element_size; }},
+    {"numerics", "contact_band", "contact-band", Dimension::Length, false, std::nullopt, "",
+     "18 mm", "3D: arc length from the apex over which numerics.contact_element_size holds",
+     nullptr, +[](Case& c) { return &c.numerics.contact_band; }},
     {"numerics", "time_step_factor", "time-step-factor", Dimension::Dimensionless, false,
      std::nullopt, "", "0.5",
      "3D elastic time step factor: dt = factor * smallest node spacing / p-wave speed (0.5 when "
@@ -452,6 +469,16 @@ Case build(const Reader& r, Case c) {
           fmt::format("{}: shell.mesh = \"{}\": no such file", c.source, c.shell.mesh));
   }
   if (c.numerics.element_size) positive("numerics", "element_size", *c.numerics.element_size);
+  const auto graded_pair = [&](std::string_view size, const std::optional<double>& s,
+                               std::string_view band, const std::optional<double>& b) {
+    check(s.has_value() == b.has_value(),
+          fmt::format("numerics.{} and numerics.{} go together: give both or neither", size, band));
+    if (s) positive("numerics", size, *s);
+    if (b) positive("numerics", band, *b);
+  };
+  graded_pair("rim_element_size", c.numerics.rim_element_size, "rim_band", c.numerics.rim_band);
+  graded_pair("contact_element_size", c.numerics.contact_element_size, "contact_band",
+              c.numerics.contact_band);
   if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
   if (c.numerics.time_step_factor) {

@@ -130,6 +130,11 @@ struct Numerics {
   std::optional<BulkIntegration> bulk_integration;
   Resolution resolution = Resolution::Default;
   std::optional<double> element_size;  // [m]; from the resolution preset when absent
+  // A graded 3D cap (mesh::CapSpec): elements of rim_element_size within rim_band of the rim and
+  // of contact_element_size within contact_band of the apex (arc lengths on the mid-surface),
+  // growing from there to element_size. Each pair is given whole or not at all.
+  std::optional<double> rim_element_size, rim_band;          // [m]
+  std::optional<double> contact_element_size, contact_band;  // [m]
   std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)
   // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
   // 1, fine 2; axisymmetric: 2, 4, 8).

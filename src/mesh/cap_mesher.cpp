@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 
@@ -49,7 +50,20 @@ SurfaceMesh triangulate_mid_surface(const CapSpec& s) {
   }
   if (face < 0) throw MeshError("gmsh produced no spherical face for the cap");
   gmsh::option::setNumber("Mesh.MeshSizeMax", s.element_size);
-  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * s.element_size);
+  if (s.graded()) {
+    const double finest = std::min(s.rim_size > 0.0 ? s.rim_size : s.element_size,
+                                   s.contact_size > 0.0 ? s.contact_size : s.element_size);
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * finest);
+    gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+    gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+    gmsh::model::mesh::setSizeCallback([s](int, int, double x, double y, double z) {
+      const double r = std::sqrt(x * x + y * y + z * z);
+      return cap_element_size(s, s.R * std::acos(std::clamp(-z / r, -1.0, 1.0)));
+    });
+  } else {
+    gmsh::option::setNumber("Mesh.MeshSizeMin", 0.5 * s.element_size);
+  }
   gmsh::option::setNumber("Mesh.Algorithm", 6);  // Frontal-Delaunay: well-shaped triangles
   gmsh::model::mesh::generate(2);
 
@@ -87,6 +101,15 @@ double polar_angle(Vec d) { return std::acos(std::clamp(-d.z, -1.0, 1.0)); }
 
 }  // namespace
 
+double cap_element_size(const CapSpec& s, double arc) {
+  const auto zone = [](double fine, double band, double distance) {
+    if (!(fine > 0.0)) return std::numeric_limits<double>::infinity();
+    return fine + kSizeGrowth * std::max(0.0, distance - band);
+  };
+  return std::min({s.element_size, zone(s.contact_size, s.contact_band, arc),
+                   zone(s.rim_size, s.rim_band, s.R * s.phi - arc)});
+}
+
 CapSpec cap_spec(const config::Case& c) {
   const auto& preset = config::preset(c.numerics.resolution);
   CapSpec s;
@@ -96,6 +119,10 @@ CapSpec cap_spec(const config::Case& c) {
   s.element_size = c.numerics.element_size.value_or(preset.element_size_over_sqrt_hR *
                                                     std::sqrt(c.shell.h * c.shell.R));
   s.layers = c.numerics.elements_through_thickness.value_or(preset.layers);
+  s.rim_size = c.numerics.rim_element_size.value_or(0.0);
+  s.rim_band = c.numerics.rim_band.value_or(0.0);
+  s.contact_size = c.numerics.contact_element_size.value_or(0.0);
+  s.contact_band = c.numerics.contact_band.value_or(0.0);
   return s;
 }
 
@@ -106,6 +133,22 @@ Mesh make_cap_mesh(const CapSpec& s) {
         "cap mesh needs 0 < h < R, 0 < phi < pi, element_size > 0 and layers >= 1 (got R = {}, "
         "h = {}, phi = {}, element_size = {}, layers = {})",
         s.R, s.h, s.phi, s.element_size, s.layers));
+  }
+  for (const auto& [name, v] : {std::pair{"rim size", s.rim_size},
+                                {"rim band", s.rim_band},
+                                {"contact size", s.contact_size},
+                                {"contact band", s.contact_band}}) {
+    if (!(v >= 0.0 && std::isfinite(v))) {
+      throw MeshError(fmt::format("cap mesh: the {} must be a finite length (got {})", name, v));
+    }
+  }
+  // A bound on what the grading may ask of gmsh: below h / 10 the cap would hold millions of
+  // elements for a zone that thin elements through h cannot resolve anyway.
+  for (const double fine : {s.rim_size, s.contact_size}) {
+    if (fine > 0.0 && fine < 0.1 * s.h) {
+      throw MeshError(fmt::format(
+          "cap mesh: a graded size of {} m is below a tenth of the thickness h = {} m", fine, s.h));
+    }
   }
   if (s.element_size > 0.5 * s.R * s.phi) {
     throw MeshError(fmt::format("element size {} m is too coarse for a cap of arc length {} m",
@@ -123,6 +166,12 @@ Mesh make_cap_mesh(const CapSpec& s) {
       "spherical cap R = {} m, h = {} m, phi = {} rad, element size {} m, "
       "{} layers",
       s.R, s.h, s.phi, s.element_size, L);
+  if (s.rim_size > 0.0) {
+    m.description += fmt::format(", {} m within {} m of the rim", s.rim_size, s.rim_band);
+  }
+  if (s.contact_size > 0.0) {
+    m.description += fmt::format(", {} m within {} m of the apex", s.contact_size, s.contact_band);
+  }
   // Vertices: layer k (0 = inner surface, L = outer) of surface vertex i is k * ns + i.
   const auto radius = [&](int k) { return s.R - 0.5 * s.h + s.h * k / L; };
   std::vector<Vec> dir_of;

@@ -12,7 +12,21 @@ struct CapSpec {
   double phi = 0.0;           // rim polar angle from the apex [rad]
   double element_size = 0.0;  // target in-surface edge length of the quadratic elements [m]
   int layers = 2;             // quadratic elements through the thickness
+  // Grading (0: none): element size rim_size within rim_band of the rim and contact_size within
+  // contact_band of the apex (arc lengths on the mid-surface); from there the size grows by
+  // kSizeGrowth of the distance until it reaches element_size.
+  double rim_size = 0.0, rim_band = 0.0;
+  double contact_size = 0.0, contact_band = 0.0;
+  [[nodiscard]] bool graded() const { return rim_size > 0.0 || contact_size > 0.0; }
 };
+
+// How fast a graded cap's elements grow away from a fine zone: 0.3 m per metre, so that
+// neighbouring elements differ by about 30 % in size.
+inline constexpr double kSizeGrowth = 0.3;
+
+// The element size a graded cap asks for at arc length `arc` from the apex on the mid-surface
+// (element_size where no fine zone reaches).
+double cap_element_size(const CapSpec& spec, double arc);
 
 // The cap of a case at its resolution: numerics.element_size if given, else the preset's
 // fraction of sqrt(h R) (the scale of the contact zone), and numerics.elements_through_thickness
