@@ -99,6 +99,73 @@ SurfaceMesh triangulate_mid_surface(const CapSpec& s) {
 
 double polar_angle(Vec d) { return std::acos(std::clamp(-d.z, -1.0, 1.0)); }
 
+// Throws MeshError for a spec the mesher cannot use.
+void check_spec(const CapSpec& s) {
+  if (!(s.R > 0 && s.h > 0 && s.h < s.R && s.phi > 0 && s.phi < std::numbers::pi &&
+        s.element_size > 0 && s.layers >= 1)) {
+    throw MeshError(fmt::format(
+        "cap mesh needs 0 < h < R, 0 < phi < pi, element_size > 0 and layers >= 1 (got R = {}, "
+        "h = {}, phi = {}, element_size = {}, layers = {})",
+        s.R, s.h, s.phi, s.element_size, s.layers));
+  }
+  for (const auto& [name, v] : {std::pair{"rim size", s.rim_size},
+                                {"rim band", s.rim_band},
+                                {"contact size", s.contact_size},
+                                {"contact band", s.contact_band}}) {
+    if (!(v >= 0.0 && std::isfinite(v))) {
+      throw MeshError(fmt::format("cap mesh: the {} must be a finite length (got {})", name, v));
+    }
+  }
+  // A bound on what the grading may ask of gmsh: below h / 10 the cap would hold millions of
+  // elements for a zone that thin elements through h cannot resolve anyway.
+  for (const double fine : {s.rim_size, s.contact_size}) {
+    if (fine > 0.0 && fine < 0.1 * s.h) {
+      throw MeshError(fmt::format(
+          "cap mesh: a graded size of {} m is below a tenth of the thickness h = {} m", fine, s.h));
+    }
+  }
+  if (s.element_size > 0.5 * s.R * s.phi) {
+    throw MeshError(fmt::format("element size {} m is too coarse for a cap of arc length {} m",
+                                s.element_size, s.R * s.phi));
+  }
+}
+
+std::string describe(const CapSpec& s) {
+  const int L = s.layers;
+  std::string d = fmt::format(
+      "spherical cap R = {} m, h = {} m, phi = {} rad, element size {} m, "
+      "{} layers",
+      s.R, s.h, s.phi, s.element_size, L);
+  if (s.rim_size > 0.0) {
+    d += fmt::format(", {} m within {} m of the rim", s.rim_size, s.rim_band);
+  }
+  if (s.contact_size > 0.0) {
+    d += fmt::format(", {} m within {} m of the apex", s.contact_size, s.contact_band);
+  }
+  return d;
+}
+
+// The clamped (rim) and outer node sets, and the apex: the lowest outer node, on the axis.
+void mark_sets(const CapSpec& s, const std::vector<bool>& rim_of, const std::vector<bool>& outer_of,
+               Mesh& m) {
+  double lowest = 0.0;
+  for (int a = 0; a < static_cast<int>(m.nodes.size()); ++a) {
+    if (rim_of[a]) m.clamped.push_back(a);
+    if (outer_of[a]) {
+      m.outer.push_back(a);
+      if (m.apex < 0 || m.nodes.z[a] < lowest) {
+        m.apex = a;
+        lowest = m.nodes.z[a];
+      }
+    }
+  }
+  const double off_axis = std::hypot(m.nodes.x[m.apex], m.nodes.y[m.apex]);
+  if (off_axis > 1e-9 * s.R) {
+    throw MeshError(
+        fmt::format("the cap mesh has no node at the apex (nearest is {} m off axis)", off_axis));
+  }
+}
+
 }  // namespace
 
 double cap_element_size(const CapSpec& s, double arc) {
@@ -127,33 +194,7 @@ CapSpec cap_spec(const config::Case& c) {
 }
 
 Mesh make_cap_mesh(const CapSpec& s) {
-  if (!(s.R > 0 && s.h > 0 && s.h < s.R && s.phi > 0 && s.phi < std::numbers::pi &&
-        s.element_size > 0 && s.layers >= 1)) {
-    throw MeshError(fmt::format(
-        "cap mesh needs 0 < h < R, 0 < phi < pi, element_size > 0 and layers >= 1 (got R = {}, "
-        "h = {}, phi = {}, element_size = {}, layers = {})",
-        s.R, s.h, s.phi, s.element_size, s.layers));
-  }
-  for (const auto& [name, v] : {std::pair{"rim size", s.rim_size},
-                                {"rim band", s.rim_band},
-                                {"contact size", s.contact_size},
-                                {"contact band", s.contact_band}}) {
-    if (!(v >= 0.0 && std::isfinite(v))) {
-      throw MeshError(fmt::format("cap mesh: the {} must be a finite length (got {})", name, v));
-    }
-  }
-  // A bound on what the grading may ask of gmsh: below h / 10 the cap would hold millions of
-  // elements for a zone that thin elements through h cannot resolve anyway.
-  for (const double fine : {s.rim_size, s.contact_size}) {
-    if (fine > 0.0 && fine < 0.1 * s.h) {
-      throw MeshError(fmt::format(
-          "cap mesh: a graded size of {} m is below a tenth of the thickness h = {} m", fine, s.h));
-    }
-  }
-  if (s.element_size > 0.5 * s.R * s.phi) {
-    throw MeshError(fmt::format("element size {} m is too coarse for a cap of arc length {} m",
-                                s.element_size, s.R * s.phi));
-  }
+  check_spec(s);
   const SurfaceMesh sm = triangulate_mid_surface(s);
   const int ns = static_cast<int>(sm.dir.size());
   const int L = s.layers;
@@ -162,16 +203,7 @@ Mesh make_cap_mesh(const CapSpec& s) {
   for (int i = 0; i < ns; ++i) on_rim[i] = polar_angle(sm.dir[i]) >= s.phi - rim_tol;
 
   Mesh m;
-  m.description = fmt::format(
-      "spherical cap R = {} m, h = {} m, phi = {} rad, element size {} m, "
-      "{} layers",
-      s.R, s.h, s.phi, s.element_size, L);
-  if (s.rim_size > 0.0) {
-    m.description += fmt::format(", {} m within {} m of the rim", s.rim_size, s.rim_band);
-  }
-  if (s.contact_size > 0.0) {
-    m.description += fmt::format(", {} m within {} m of the apex", s.contact_size, s.contact_band);
-  }
+  m.description = describe(s);
   // Vertices: layer k (0 = inner surface, L = outer) of surface vertex i is k * ns + i.
   const auto radius = [&](int k) { return s.R - 0.5 * s.h + s.h * k / L; };
   std::vector<Vec> dir_of;
@@ -239,22 +271,7 @@ Mesh make_cap_mesh(const CapSpec& s) {
         {c[0], c[1], c[2], edge(c[0], c[1]), edge(c[1], c[2]), edge(c[0], c[2])});
   }
 
-  double lowest = 0.0;
-  for (int a = 0; a < static_cast<int>(m.nodes.size()); ++a) {
-    if (rim_of[a]) m.clamped.push_back(a);
-    if (outer_of[a]) {
-      m.outer.push_back(a);
-      if (m.apex < 0 || m.nodes.z[a] < lowest) {
-        m.apex = a;
-        lowest = m.nodes.z[a];
-      }
-    }
-  }
-  const double off_axis = std::hypot(m.nodes.x[m.apex], m.nodes.y[m.apex]);
-  if (off_axis > 1e-9 * s.R) {
-    throw MeshError(
-        fmt::format("the cap mesh has no node at the apex (nearest is {} m off axis)", off_axis));
-  }
+  mark_sets(s, rim_of, outer_of, m);
   check_mesh(m);
   check_shell_sets(m);
   return m;
