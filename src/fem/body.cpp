@@ -309,6 +309,52 @@ double Body::stable_time_step(double factor) const {
   return factor * min_spacing_ / material_.p_wave_speed();
 }
 
+// Power iteration on M^-1 K, K v from the forces of a small displacement eps v about the
+// reference state (where the forces vanish): the iterate tends to the highest mode, its Rayleigh
+// quotient to omega_max^2.
+double Body::highest_frequency() const {
+  const std::size_t n = num_nodes();
+  mesh::Points v, x = mesh_.nodes, f;
+  for (std::size_t a = 0; a < n; ++a) {  // a start vector with every mode in it
+    const auto d = static_cast<double>(a);
+    v.push_back(std::sin(1.0 + 3.7 * d), std::cos(2.0 + 5.3 * d), std::sin(0.5 + 7.1 * d));
+  }
+  const auto& X = mesh_.nodes;
+  double lambda = 0.0;
+  for (int it = 0; it < 500; ++it) {
+    double norm = 0.0;
+    for (std::size_t a = 0; a < n; ++a) norm += v.x[a] * v.x[a] + v.y[a] * v.y[a] + v.z[a] * v.z[a];
+    norm = std::sqrt(norm);
+    for (std::size_t a = 0; a < n; ++a) {
+      v.x[a] /= norm;
+      v.y[a] /= norm;
+      v.z[a] /= norm;
+    }
+    // A displacement of about 1e-7 of the smallest node spacing per node.
+    const double eps = 1e-7 * min_spacing_ * std::sqrt(static_cast<double>(n));
+    for (std::size_t a = 0; a < n; ++a) {
+      x.x[a] = X.x[a] + eps * v.x[a];
+      x.y[a] = X.y[a] + eps * v.y[a];
+      x.z[a] = X.z[a] + eps * v.z[a];
+    }
+    internal_forces(x, f);
+    double vw = 0.0, vv = 0.0;
+    for (std::size_t a = 0; a < n; ++a) {
+      const double s = -1.0 / (eps * mass_[a]);
+      const double w[3] = {s * f.x[a], s * f.y[a], s * f.z[a]};
+      vw += w[0] * v.x[a] + w[1] * v.y[a] + w[2] * v.z[a];
+      vv += v.x[a] * v.x[a] + v.y[a] * v.y[a] + v.z[a] * v.z[a];
+      v.x[a] = w[0];
+      v.y[a] = w[1];
+      v.z[a] = w[2];
+    }
+    const double next = vw / vv;
+    if (it > 20 && std::abs(next - lambda) < 1e-5 * std::abs(next)) return std::sqrt(next);
+    lambda = next;
+  }
+  return std::sqrt(std::max(lambda, 0.0));
+}
+
 namespace {
 
 // Records element e as inverted if it is the lowest-numbered one so far: the element a failed

@@ -102,6 +102,9 @@ class Body {
   [[nodiscard]] double min_node_spacing() const { return min_spacing_; }
   // dt = factor * min_node_spacing / p_wave_speed (the elastic time step factor).
   [[nodiscard]] double stable_time_step(double factor) const;
+  // The highest natural frequency of the free, undeformed body (lumped masses), by power
+  // iteration [rad/s]: central differences are stable for dt < 2 / omega_max.
+  [[nodiscard]] double highest_frequency() const;
 
   // Element e's reference shape gradients dN_a/dX at its quadrature point q (of 4), as
   // [node][3], and that point's weight (rule weight * det(dX/dxi)).
