@@ -15,24 +15,6 @@
 
 namespace snapjump::app {
 
-namespace {
-
-// ", 1 mm within 4 mm of the rim, ..." for a graded cap; empty for a uniform one.
-std::string grading(const mesh::CapSpec& s) {
-  std::string out;
-  if (s.rim_size > 0.0) {
-    out +=
-        fmt::format(", {:.3g} mm within {:.3g} mm of the rim", 1e3 * s.rim_size, 1e3 * s.rim_band);
-  }
-  if (s.contact_size > 0.0) {
-    out += fmt::format(", {:.3g} mm within {:.3g} mm of the apex", 1e3 * s.contact_size,
-                       1e3 * s.contact_band);
-  }
-  return out;
-}
-
-}  // namespace
-
 MeshCommand::MeshCommand(CLI::App& app) {
   cmd_ = app.add_subcommand(
       "mesh",
@@ -68,9 +50,9 @@ int MeshCommand::run(std::ostream& out, std::ostream& err) const {
              "element size {:.3g} mm{}, {} layers ({} resolution)\n  mesh        {} ten-node "
              "tetrahedra, {} nodes; groups shell, inner, clamped, outer\n  written     {}\n",
              text::printable_line(c.title.empty() ? c.source : c.title), 1e3 * spec.R, 1e3 * spec.h,
-             spec.phi * 180.0 / std::numbers::pi, 1e3 * spec.element_size, grading(spec),
-             spec.layers, config::to_string(c.numerics.resolution), m.tets.size(), m.nodes.size(),
-             output_);
+             spec.phi * 180.0 / std::numbers::pi, 1e3 * spec.element_size,
+             mesh::grading_summary(spec), spec.layers, config::to_string(c.numerics.resolution),
+             m.tets.size(), m.nodes.size(), output_);
   return kExitOk;
 }
 

@@ -95,6 +95,17 @@ double first_invariant(const double F[9]) {
   return I1;
 }
 
+// psi(F) of one law at one point; +inf where det F <= 0 or the law is not defined at F.
+template <typename Shear>
+double point_energy(const Shear& shear, const law::LogVolumetric& volumetric, const double F[9]) {
+  const double J = det3(F);
+  if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
+  const double I1 = first_invariant(F);
+  if (!shear.admissible(I1)) return std::numeric_limits<double>::infinity();
+  const double lnJ = std::log(J);
+  return shear.energy(I1, lnJ) + volumetric.energy(lnJ);
+}
+
 }  // namespace
 
 bool first_piola_stress(const Material& m, const double F[9], double P[9]) {
@@ -117,12 +128,7 @@ bool first_piola_stress(const Material& m, const double F[9], double P[9]) {
 
 double energy_density(const Material& m, const double F[9]) {
   return with_law(m, [&](const auto& shear, const law::LogVolumetric& volumetric) {
-    const double J = det3(F);
-    if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
-    const double I1 = first_invariant(F);
-    if (!shear.admissible(I1)) return std::numeric_limits<double>::infinity();
-    const double lnJ = std::log(J);
-    return shear.energy(I1, lnJ) + volumetric.energy(lnJ);
+    return point_energy(shear, volumetric, F);
   });
 }
 
@@ -527,12 +533,7 @@ template <bool kEnergy, typename Shear>
     for (int q = 0; q < kQp; ++q) {
       double Fq[9];
       at_point(F, q, Fq);
-      const double J = det3(Fq);
-      double I1 = 0.0;
-      for (int k = 0; k < 9; ++k) I1 += Fq[k] * Fq[k];
-      if (!(J > 0.0) || !shear.admissible(I1)) return false;
-      const double lnJ = std::log(J);
-      const double psi = shear.energy(I1, lnJ) + at_points.energy(lnJ);
+      const double psi = point_energy(shear, at_points, Fq);
       if (!std::isfinite(psi)) return false;
       *out += w[q] * psi;
     }

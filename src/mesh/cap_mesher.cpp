@@ -136,13 +136,7 @@ std::string describe(const CapSpec& s) {
       "spherical cap R = {} m, h = {} m, phi = {} rad, element size {} m, "
       "{} layers",
       s.R, s.h, s.phi, s.element_size, L);
-  if (s.rim_size > 0.0) {
-    d += fmt::format(", {} m within {} m of the rim", s.rim_size, s.rim_band);
-  }
-  if (s.contact_size > 0.0) {
-    d += fmt::format(", {} m within {} m of the apex", s.contact_size, s.contact_band);
-  }
-  return d;
+  return d + grading_summary(s);
 }
 
 // The clamped (rim) and outer node sets, and the apex: the lowest outer node, on the axis.
@@ -167,6 +161,19 @@ void mark_sets(const CapSpec& s, const std::vector<bool>& rim_of, const std::vec
 }
 
 }  // namespace
+
+std::string grading_summary(const CapSpec& s) {
+  std::string out;
+  if (s.rim_size > 0.0) {
+    out +=
+        fmt::format(", {:.3g} mm within {:.3g} mm of the rim", 1e3 * s.rim_size, 1e3 * s.rim_band);
+  }
+  if (s.contact_size > 0.0) {
+    out += fmt::format(", {:.3g} mm within {:.3g} mm of the apex", 1e3 * s.contact_size,
+                       1e3 * s.contact_band);
+  }
+  return out;
+}
 
 double cap_element_size(const CapSpec& s, double arc) {
   const auto zone = [](double fine, double band, double distance) {

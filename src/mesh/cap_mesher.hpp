@@ -1,6 +1,8 @@
 // The spherical cap of a case as a quadratic tetrahedral mesh.
 #pragma once
 
+#include <string>
+
 #include "config/case.hpp"
 #include "mesh/mesh.hpp"
 
@@ -27,6 +29,10 @@ inline constexpr double kSizeGrowth = 0.3;
 // The element size a graded cap asks for at arc length `arc` from the apex on the mid-surface
 // (element_size where no fine zone reaches).
 double cap_element_size(const CapSpec& spec, double arc);
+
+// ", 1 mm within 4 mm of the rim, 2 mm within 18 mm of the apex" for a graded cap, empty for a
+// uniform one: the grading as the mesh's description and the commands' reports give it.
+std::string grading_summary(const CapSpec& spec);
 
 // The cap of a case at its resolution: numerics.element_size if given, else the preset's
 // fraction of sqrt(h R) (the scale of the contact zone), and numerics.elements_through_thickness

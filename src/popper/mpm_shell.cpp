@@ -90,9 +90,10 @@ std::string MpmShell::describe() const {
   const auto& n = numerics_;
   const std::string mesh =
       n.mesh_file.empty()
-          ? fmt::format("{} ten-node tetrahedra, {} particles (element size {:.3g} mm, {} layers)",
-                        body_->num_elements(), body_->num_nodes(), 1e3 * n.cap.element_size,
-                        n.cap.layers)
+          ? fmt::format(
+                "{} ten-node tetrahedra, {} particles (element size {:.3g} mm{}, {} layers)",
+                body_->num_elements(), body_->num_nodes(), 1e3 * n.cap.element_size,
+                mesh::grading_summary(n.cap), n.cap.layers)
           : fmt::format("{} ten-node tetrahedra, {} particles, read from {}", body_->num_elements(),
                         body_->num_nodes(), n.mesh_file);
   return fmt::format(
