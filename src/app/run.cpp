@@ -112,7 +112,7 @@ void write_json_file(const fs::path& path, const nlohmann::json& doc) {
 }
 
 void print_numerics(std::ostream& out, const popper::Popper& pop) {
-  out << pop.model().describe();
+  out << pop.model().report().describe();
   // What the model assumes where the paper is silent (docs/popper.md, "Assumptions").
   const auto& c = pop.input();
   fmt::print(out,
@@ -445,7 +445,7 @@ class Run {
         series_(columns_, true),
         pvd_(dir_ / "run.pvd") {
     print_numerics(out_, pop_);
-    summary_["numerics"] = pop_.model().numerics_json();
+    summary_["numerics"] = pop_.model().report().numerics_json();
     summary_["numerics"]["end_time"] = numerics_.end_time;
     summary_["end"] = end_json(c_, numerics_.end_time);
   }
@@ -524,7 +524,7 @@ class Run {
 
 void Run::snapshot() {
   const auto name = fmt::format("snapshots/frame_{:05d}.vtu", pvd_.size());
-  pop_.model().write_snapshot(dir_ / name, pop_.time());
+  pop_.model().report().write_snapshot(dir_ / name, pop_.time());
   // The plate and the container (its side, up to a height of the shell's radius) as simple
   // geometry for ParaView.
   io::write_apparatus_vtu(dir_ / io::apparatus_file(name), 2.0 * c_.shell.R,

@@ -18,7 +18,6 @@ Dynamics::Dynamics(const Body& body, double dt)
   rim_.assign(n, 0);
   axis_.assign(n, 0);
   outer_.assign(n, 0);
-  loaded_.assign(n, 0);
   for (int a : body.rim()) rim_[a] = 1;
   for (int a : body.axis()) axis_[a] = 1;
   for (int a : body.outer()) outer_[a] = 1;
@@ -28,11 +27,14 @@ Dynamics::Dynamics(const Body& body, double dt)
   }
 }
 
-void Dynamics::hold_rim() { container_ = nullptr; }
+void Dynamics::hold_rim() {
+  container_ = nullptr;
+  plate_.reset();
+}
 
 void Dynamics::attach(core::RigidBody& container, double mu, double rim_offset) {
   container_ = &container;
-  mu_ = mu;
+  plate_.emplace(x_.size(), mu);
   rim_offset_ = rim_offset;
 }
 
@@ -74,9 +76,8 @@ void Dynamics::step() {
   const double rim_dz = container_ ? rim_offset_ + container_->z : 0.0;
   const double cd = 0.5 * damping_ * dt_;
   const double a0 = (1.0 - cd) / (1.0 + cd), a1 = dt_ / (1.0 + cd);
-  double impulse = 0.0;
+  if (plate_) plate_->begin_step();
   for (std::size_t a = 0; a < n; ++a) {
-    loaded_[a] = 0;
     if (rim_[a]) {
       v_.r[a] = 0.0;
       if (container_) {
@@ -90,17 +91,7 @@ void Dynamics::step() {
     const double inv_m = 1.0 / m[a];
     v_.r[a] = axis_[a] ? 0.0 : a0 * v_.r[a] + a1 * f_.r[a] * inv_m;
     v_.z[a] = a0 * v_.z[a] + a1 * f_.z[a] * inv_m;
-    if (container_ && outer_[a] && x_.z[a] + dt_ * v_.z[a] < 0.0) {
-      // Lands on the plate at the end of the step.
-      const double vz = -x_.z[a] / dt_;
-      const double jn = m[a] * (vz - v_.z[a]);
-      v_.z[a] = vz;
-      const double jt = mu_ * jn;
-      const double pr = m[a] * v_.r[a];
-      v_.r[a] = std::abs(pr) <= jt ? 0.0 : v_.r[a] - std::copysign(jt, pr) * inv_m;
-      impulse += jn;
-      loaded_[a] = 1;
-    }
+    if (plate_ && outer_[a]) plate_->apply(a, m[a], x_.z[a], v_.r[a], v_.z[a], dt_);
     if (rim_contacts_ && surface_[a]) stop_at_cone(a, rim_dz);
     x_.r[a] += dt_ * v_.r[a];
     x_.z[a] += dt_ * v_.z[a];
@@ -113,7 +104,7 @@ void Dynamics::step() {
   if (container_ && cone_impulse_ != 0.0) {
     container_->vz += cone_impulse_ * cone_.nz() / (container_->mass + m_rim);
   }
-  plate_force_ = impulse / dt_;
+  if (plate_) plate_->end_step(dt_);
   time_ += dt_;
   ++steps_;
 }

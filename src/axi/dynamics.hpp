@@ -3,10 +3,8 @@
 // masses, with the rim either held in place or glued to the rigid container, and the plate z = 0
 // acting exactly on the outer surface's nodes (no grid, no standoff).
 //
-// The plate: a node whose step would take it below z = 0 lands on it; the normal impulse that
-// stops it is the plate's reaction, and Coulomb friction takes up to mu times that impulse from
-// the node's radial momentum, never reversing it. The plate force is the sum of the normal
-// impulses over the step.
+// The plate (axi/plate.hpp) acts once the rim is glued to the container, on the outer surface's
+// nodes after their kick, before the contacts at the rim.
 //
 // The container and the fold (axi/contact.hpp): a node whose step would take it across the rim
 // face's cone, from the clamped face outwards, lands on the cone (frictionless, its normal
@@ -17,10 +15,12 @@
 
 #include <functional>
 #include <iosfwd>
+#include <optional>
 #include <vector>
 
 #include "axi/body.hpp"
 #include "axi/contact.hpp"
+#include "axi/plate.hpp"
 #include "core/rigid_body.hpp"
 
 namespace snapjump::axi {
@@ -72,8 +72,10 @@ class Dynamics {
   [[nodiscard]] double kinetic_energy() const;
   [[nodiscard]] double potential_energy(double g) const;  // of the shell's weight
   // The plate's reaction in the last step [N], and whether it pushed node a.
-  [[nodiscard]] double plate_force() const { return plate_force_; }
-  [[nodiscard]] bool loaded(int a) const { return loaded_[a] != 0; }
+  [[nodiscard]] double plate_force() const { return plate_ ? plate_->force() : 0.0; }
+  [[nodiscard]] bool loaded(int a) const {
+    return plate_ && plate_->loaded(static_cast<std::size_t>(a));
+  }
 
  private:
   void stop_at_cone(std::size_t a, double rim_dz);
@@ -84,13 +86,12 @@ class Dynamics {
   long steps_ = 0;
   double damping_ = 0.0;
   double gravity_ = 0.0;
-  double mu_ = 0.0;
   std::function<double()> pressure_;
   core::RigidBody* container_ = nullptr;
   Points x_, v_, f_;
-  std::vector<char> rim_, axis_, outer_, loaded_;
+  std::vector<char> rim_, axis_, outer_;
   double rim_offset_ = 0.0;
-  double plate_force_ = 0.0;
+  std::optional<PlateRule> plate_;  // from attach() on
   bool rim_contacts_ = true;
   RimCone cone_;
   InnerSelfContact self_contact_;

@@ -13,12 +13,14 @@
 
 namespace snapjump::popper {
 
-class AxiShell final : public ShellModel {
+class AxiShell final : public ShellModel, public ShellReport {
  public:
   AxiShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p);
 
+  [[nodiscard]] const ShellReport& report() const override { return *this; }
   [[nodiscard]] std::string describe() const override;
   [[nodiscard]] nlohmann::json numerics_json() const override;
+  void write_snapshot(const std::filesystem::path& path, double t) const override;
   [[nodiscard]] double shell_mass() const override { return body_.total_mass(); }
   [[nodiscard]] double undeformed_cavity_volume() const override {
     return body_.cavity_volume(body_.nodes());
@@ -59,7 +61,6 @@ class AxiShell final : public ShellModel {
 
   void save_state(std::ostream& out) const override;
   void load_state(std::istream& in, core::RigidBody& container, double mu) override;
-  void write_snapshot(const std::filesystem::path& path, double t) const override;
   [[nodiscard]] double outer_rim_radius() const override {
     return body_.nodes().r[static_cast<std::size_t>(body_.outer().back())];
   }

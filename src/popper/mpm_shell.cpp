@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
 #include "io/vtu.hpp"
 #include "mesh/msh_reader.hpp"
@@ -129,9 +130,23 @@ double MpmShell::outer_rim_z(const mesh::Points& x) const {
   return z / static_cast<double>(outer_rim_.size());
 }
 
+const MpmShell::OnPlate& MpmShell::on_plate(const char* method) const {
+  if (const auto* p = std::get_if<OnPlate>(&phase_)) return *p;
+  throw std::logic_error(fmt::format(
+      "MpmShell::{}: only the shell on the plate has this (call start_on_plate or load_state "
+      "first)",
+      method));
+}
+
+MpmShell::OnPlate& MpmShell::on_plate(const char* method) {
+  return const_cast<OnPlate&>(std::as_const(*this).on_plate(method));
+}
+
+const mpm::Stepper& MpmShell::stepper() const { return *on_plate("stepper").stepper; }
+
 const mesh::Points& MpmShell::positions() const {
-  if (stepper_) return stepper_->particles().x;
-  if (driver_) return driver_->positions();
+  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->particles().x;
+  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->positions();
   return body_->mesh().nodes;
 }
 
@@ -141,8 +156,7 @@ void MpmShell::start_held(double damping) {
   eo.damping = damping;
   eo.pressure = [this](double) { return delta_p_(); };
   eo.container_face = container_face();
-  driver_ = std::make_unique<fem::ExplicitDriver>(*body_, eo);
-  stepper_.reset();
+  phase_ = Held{std::make_unique<fem::ExplicitDriver>(*body_, eo)};
 }
 
 void MpmShell::start_on_plate(core::RigidBody& container, double mu, double damping) {
@@ -156,21 +170,23 @@ void MpmShell::start_on_plate(core::RigidBody& container, double mu, double damp
   auto particles = hybrid::particles_of(*body_);
   particles.x = x;
   build_stepper(std::move(particles), container, mu, damping);
-  driver_.reset();
 }
 
 void MpmShell::build_stepper(mpm::Particles particles, core::RigidBody& container, double mu,
                              double damping) {
-  stepper_ = std::make_unique<mpm::Stepper>(
+  OnPlate p;
+  p.stepper = std::make_unique<mpm::Stepper>(
       std::move(particles), *forces_,
       mpm::StepperOptions{time_step_.dt, numerics_.dx, 0.5, damping});
-  stepper_->add_rule(std::make_unique<mpm::ClampRule>(container));
+  p.stepper->add_rule(std::make_unique<mpm::ClampRule>(container));
   if (const auto face = container_face()) {
-    face_ = &dynamic_cast<mpm::ContainerFaceRule&>(
-        stepper_->add_rule(std::make_unique<mpm::ContainerFaceRule>(container, *face)));
+    p.face = &dynamic_cast<mpm::ContainerFaceRule&>(
+        p.stepper->add_rule(std::make_unique<mpm::ContainerFaceRule>(container, *face)));
   }
-  plate_ = &dynamic_cast<mpm::PlateRule&>(stepper_->add_rule(std::make_unique<mpm::PlateRule>(mu)));
-  stepper_->add_rigid_body(container);
+  p.plate =
+      &dynamic_cast<mpm::PlateRule&>(p.stepper->add_rule(std::make_unique<mpm::PlateRule>(mu)));
+  p.stepper->add_rigid_body(container);
+  phase_ = std::move(p);
 }
 
 std::optional<core::ContainerFace> MpmShell::container_face() const {
@@ -179,36 +195,49 @@ std::optional<core::ContainerFace> MpmShell::container_face() const {
   return core::container_face(numerics_.cap.R, numerics_.cap.h, numerics_.cap.phi);
 }
 
-void MpmShell::set_damping(double c) {
-  if (stepper_) stepper_->set_damping(c);
-}
+void MpmShell::set_damping(double c) { on_plate("set_damping").stepper->set_damping(c); }
 
 // The rim's displacement from the cap's frame: the clamped particles' mean, which the container
 // carries.
-double MpmShell::rim_dz() const {
+double MpmShell::rim_dz(const mpm::Stepper& stepper) const {
   const auto& X = body_->mesh().nodes;
-  const auto& x = stepper_->particles().x;
+  const auto& x = stepper.particles().x;
   double dz = 0.0;
   for (int a : body_->mesh().clamped) dz += x.z[a] - X.z[a];
   return dz / static_cast<double>(body_->mesh().clamped.size());
 }
 
 void MpmShell::step() {
-  if (stepper_) {
-    if (face_ != nullptr) face_->set_dz(rim_dz());
-    stepper_->step();
+  if (auto* p = std::get_if<OnPlate>(&phase_)) {
+    if (p->face != nullptr) p->face->set_dz(rim_dz(*p->stepper));
+    p->stepper->step();
+  } else if (auto* h = std::get_if<Held>(&phase_)) {
+    h->driver->step();
   } else {
-    driver_->step();
+    throw std::logic_error("MpmShell::step: no phase started (call start_held or start_on_plate)");
   }
 }
 
-double MpmShell::time() const { return stepper_ ? stepper_->time() : driver_->time(); }
-double MpmShell::dt() const { return stepper_ ? stepper_->dt() : driver_->dt(); }
-long MpmShell::steps() const { return stepper_ ? stepper_->steps() : driver_->steps(); }
-void MpmShell::reset_time() { stepper_->reset_time(); }
+// Before either phase the shell is at rest in its reference state at t = 0.
+double MpmShell::time() const {
+  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->time();
+  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->time();
+  return 0.0;
+}
+double MpmShell::dt() const {
+  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->dt();
+  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->dt();
+  return time_step_.dt;
+}
+long MpmShell::steps() const {
+  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->steps();
+  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->steps();
+  return 0;
+}
+void MpmShell::reset_time() { on_plate("reset_time").stepper->reset_time(); }
 
 void MpmShell::zero_velocities() {
-  auto& p = stepper_->particles();
+  auto& p = on_plate("zero_velocities").stepper->particles();
   std::fill(p.v.x.begin(), p.v.x.end(), 0.0);
   std::fill(p.v.y.begin(), p.v.y.end(), 0.0);
   std::fill(p.v.z.begin(), p.v.z.end(), 0.0);
@@ -216,14 +245,16 @@ void MpmShell::zero_velocities() {
 }
 
 double MpmShell::kinetic_energy() const {
-  return stepper_ ? stepper_->kinetic_energy() : driver_->kinetic_energy();
+  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->kinetic_energy();
+  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->kinetic_energy();
+  return 0.0;
 }
 // The step's chosen thread count, for the parallel loops between steps (a sample's strain energy,
 // the gas's cavity volume): under load a region at two threads waits for a descheduled thread,
 // as a step would (parallel::ThreadTuner).
 int MpmShell::chosen_threads() const {
-  if (stepper_) return stepper_->thread_tuner().chosen();
-  if (driver_) return driver_->thread_tuner().chosen();
+  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->thread_tuner().chosen();
+  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->thread_tuner().chosen();
   return parallel::max_threads();
 }
 
@@ -237,7 +268,7 @@ double MpmShell::strain_energy() const {
   return body_->strain_energy(positions());
 }
 double MpmShell::potential_energy(double g) const {
-  const auto& p = stepper_->particles();
+  const auto& p = on_plate("potential_energy").stepper->particles();
   double pot = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) pot += p.mass[i] * g * p.x.z[i];
   return pot;
@@ -253,10 +284,11 @@ ShellModel::Contact MpmShell::contact() const {
   // The outer particles that the plate carries, i.e. that have at least half of their stencil
   // weight on the nodes the plate pushed in the last step. r is the outermost; the contact is a
   // disk when the apex is among them.
-  const auto& p = stepper_->particles();
-  const double dx = stepper_->dx();
+  const auto& phase = on_plate("contact");
+  const auto& p = phase.stepper->particles();
+  const double dx = phase.stepper->dx();
   const auto touching = [&](int a) {
-    return mpm::plate_carries(*plate_, dx, p.x.x[a], p.x.y[a], p.x.z[a]);
+    return mpm::plate_carries(*phase.plate, dx, p.x.x[a], p.x.y[a], p.x.z[a]);
   };
   Contact c;
   for (int a : body_->mesh().outer) {
@@ -281,10 +313,11 @@ std::uint64_t MpmShell::node_order_fingerprint() const {
 }
 
 void MpmShell::save_state(std::ostream& out) const {
-  const auto& p = stepper_->particles();
+  const auto& stepper = *on_plate("save_state").stepper;
+  const auto& p = stepper.particles();
   put(out, node_order_fingerprint());
-  put(out, stepper_->time());
-  put(out, stepper_->steps());
+  put(out, stepper.time());
+  put(out, stepper.steps());
   for (const auto* v : {&p.x.x, &p.x.y, &p.x.z, &p.v.x, &p.v.y, &p.v.z, &p.C}) put_vector(out, *v);
 }
 
@@ -308,13 +341,15 @@ void MpmShell::load_state(std::istream& in, core::RigidBody& container, double m
   }
   get_vector(in, particles.C, 9 * n);
   build_stepper(std::move(particles), container, mu, 0.0);
-  stepper_->restore_clock(time, steps);
-  driver_.reset();
+  on_plate("load_state").stepper->restore_clock(time, steps);
 }
 
 void MpmShell::write_snapshot(const std::filesystem::path& path, double t) const {
-  io::write_vtu(path, *body_, stepper_->particles().x, stepper_->particles().v, t);
+  const auto& p = on_plate("write_snapshot").stepper->particles();
+  io::write_vtu(path, *body_, p.x, p.v, t);
 }
+
+double MpmShell::plate_force() const { return on_plate("plate_force").plate->force(); }
 
 double MpmShell::outer_rim_radius() const {
   const auto& X = body_->mesh().nodes;

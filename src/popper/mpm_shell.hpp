@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <variant>
 
 #include "fem/body.hpp"
 #include "fem/explicit.hpp"
@@ -24,12 +25,19 @@ namespace snapjump::popper {
 // apex).
 mesh::Mesh load_user_mesh(const config::Case& c);
 
-class MpmShell final : public ShellModel {
+// Phases 1-2 and the phases from the grounding on are types of their own (Held, OnPlate); what
+// only the shell on the plate has (the plate's force and contact, the state a checkpoint keeps,
+// the potential energy that the series reports from the grounding on) throws std::logic_error,
+// naming the method, when asked for before start_on_plate.
+class MpmShell final : public ShellModel, public ShellReport {
  public:
   MpmShell(const config::Case& c, const Numerics& n, std::function<double()> delta_p);
 
+  [[nodiscard]] const ShellReport& report() const override { return *this; }
   [[nodiscard]] std::string describe() const override;
   [[nodiscard]] nlohmann::json numerics_json() const override;
+  void write_snapshot(const std::filesystem::path& path, double t) const override;
+
   [[nodiscard]] double shell_mass() const override { return body_->total_mass(); }
   [[nodiscard]] double undeformed_cavity_volume() const override {
     return body_->cavity_volume(body_->mesh().nodes);
@@ -55,25 +63,41 @@ class MpmShell final : public ShellModel {
   [[nodiscard]] double cavity_volume() const override;
   [[nodiscard]] double apex_z() const override;
   [[nodiscard]] double outer_rim_z() const override;
-  [[nodiscard]] double plate_force() const override { return plate_->force(); }
+  [[nodiscard]] double plate_force() const override;
   [[nodiscard]] Contact contact() const override;
 
   void save_state(std::ostream& out) const override;
   void load_state(std::istream& in, core::RigidBody& container, double mu) override;
   [[nodiscard]] std::uint64_t node_order_fingerprint() const;
-  void write_snapshot(const std::filesystem::path& path, double t) const override;
   [[nodiscard]] double outer_rim_radius() const override;
 
   [[nodiscard]] const fem::Body& body() const { return *body_; }
-  [[nodiscard]] const mpm::Stepper& stepper() const { return *stepper_; }
+  // The MPM stepper (throws std::logic_error before start_on_plate).
+  [[nodiscard]] const mpm::Stepper& stepper() const;
 
  private:
+  // Phases 1-2: the finite elements alone, the rim held; the grid has nothing to do there.
+  struct Held {
+    std::unique_ptr<fem::ExplicitDriver> driver;
+  };
+  // From the grounding on: the MPM stepper with the clamp, the container's face and the plate.
+  struct OnPlate {
+    std::unique_ptr<mpm::Stepper> stepper;
+    mpm::PlateRule* plate = nullptr;
+    mpm::ContainerFaceRule* face = nullptr;  // absent for a designer's own shell
+  };
+  // Built and at rest, neither phase started yet.
+  struct Unstarted {};
+
+  // The shell on the plate, or std::logic_error naming `method` in any other phase.
+  [[nodiscard]] const OnPlate& on_plate(const char* method) const;
+  [[nodiscard]] OnPlate& on_plate(const char* method);
   [[nodiscard]] const mesh::Points& positions() const;
   [[nodiscard]] int chosen_threads() const;
   [[nodiscard]] double outer_rim_z(const mesh::Points& x) const;
   // The container's face around the rim, for the generated cap (core::ContainerFace).
   [[nodiscard]] std::optional<core::ContainerFace> container_face() const;
-  [[nodiscard]] double rim_dz() const;
+  [[nodiscard]] double rim_dz(const mpm::Stepper& stepper) const;
   void build_stepper(mpm::Particles particles, core::RigidBody& container, double mu,
                      double damping);
 
@@ -81,10 +105,7 @@ class MpmShell final : public ShellModel {
   std::unique_ptr<fem::Body> body_;
   std::unique_ptr<hybrid::BodyForces> forces_;
   std::function<double()> delta_p_;
-  std::unique_ptr<fem::ExplicitDriver> driver_;  // phases 1-2
-  std::unique_ptr<mpm::Stepper> stepper_;        // from the grounding on
-  mpm::PlateRule* plate_ = nullptr;
-  mpm::ContainerFaceRule* face_ = nullptr;  // absent for a designer's own shell
+  std::variant<Unstarted, Held, OnPlate> phase_;
   mpm::TimeStep time_step_;
   double hole_area_ = 0.0;
   double depth_outer_ = 0.0;

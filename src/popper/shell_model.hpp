@@ -23,14 +23,24 @@ namespace snapjump::popper {
 
 struct Numerics;
 
-class ShellModel {
+// What a run reports of a discretisation, apart from what the protocol measures: its header
+// lines, summary.json's "numerics" and the ParaView snapshots.
+class ShellReport {
  public:
-  virtual ~ShellModel() = default;
-
+  virtual ~ShellReport() = default;
   // Lines for the run's header (each starts with two spaces and ends with a newline), and the
   // same facts for summary.json's "numerics".
   [[nodiscard]] virtual std::string describe() const = 0;
   [[nodiscard]] virtual nlohmann::json numerics_json() const = 0;
+  // A ParaView snapshot of the current state on the plate (.vtu) at time t after the release [s].
+  virtual void write_snapshot(const std::filesystem::path& path, double t) const = 0;
+};
+
+class ShellModel {
+ public:
+  virtual ~ShellModel() = default;
+
+  [[nodiscard]] virtual const ShellReport& report() const = 0;
 
   [[nodiscard]] virtual double shell_mass() const = 0;
   // Cavity under the undeformed shell, to its rim plane [m^3].
@@ -111,8 +121,6 @@ class ShellModel {
   // which it is on the plate, glued to `container`.
   virtual void save_state(std::ostream& out) const = 0;
   virtual void load_state(std::istream& in, core::RigidBody& container, double mu) = 0;
-  // A ParaView snapshot of the current state (.vtu) at time t after the release [s].
-  virtual void write_snapshot(const std::filesystem::path& path, double t) const = 0;
 };
 
 // The discretisation that the case's numerics.model names; delta_p gives the pressure difference
