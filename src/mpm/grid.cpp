@@ -165,13 +165,12 @@ bool SparseGrid::regroup() {
   return true;
 }
 
-void SparseGrid::make_blocks() {
+// Every particle's home block and the slots around the homes; returns how many slots (the
+// first block ids).
+std::size_t SparseGrid::make_home_slots() {
   const std::size_t np = scratch_keys_.size();
   const auto& keys = scratch_keys_;
   const auto& blocks = scratch_blocks_;
-  const auto& reach = scratch_reach_;
-  block_index_.clear();
-  block_coords_.clear();
   home_.resize(np);
   // Home blocks, in order of first appearance: the first blocks made, so until the Morton
   // renumbering below a home's number is its block id. A particle in the same block as the one
@@ -205,6 +204,12 @@ void SparseGrid::make_blocks() {
       (void)block_id(b[0] + (nb & 1), b[1] + ((nb >> 1) & 1), b[2] + ((nb >> 2) & 1));
     }
   }
+  return nh;
+}
+
+// The blocks renumbered along the Morton curve, and the homes numbered in that order.
+void SparseGrid::order_blocks_along_curve(std::size_t nh) {
+  const std::size_t np = scratch_keys_.size();
   // Every block laid out in memory along a Morton curve of their coordinates, and the slots
   // numbered in that order: homes near each other in space are near each other in the order of
   // the transfers (and share cached nodes), a thread given a stretch of the curve (cubes, homes,
@@ -233,6 +238,12 @@ void SparseGrid::make_blocks() {
   block_coords_ = std::move(coords);
   for (auto& entry : block_index_) entry.second = place[static_cast<std::size_t>(entry.second)];
   for (std::size_t p = 0; p < np; ++p) home_[p] = slot_number[home_[p]];
+}
+
+// Each home's +x, +y, +z neighbours and the coloured cubes of homes; returns the cubes'
+// coordinates, in the order of cubes_.
+std::vector<std::array<std::int64_t, 3>> SparseGrid::make_cubes(std::size_t nh) {
+  const std::size_t nb_all = block_coords_.size();
   // Each home's neighbours, and the cubes of 4 x 4 x 4 home blocks that the parallel scatter
   // runs whole, coloured by the parity of the cube's coordinates. A cube's stencils write into
   // the cube and one block beyond on the + sides, so only adjacent cubes (which differ in colour)
@@ -260,6 +271,12 @@ void SparseGrid::make_blocks() {
     }
     cubes_.back().end_home = h + 1;
   }
+  return cube_coords;
+}
+
+// For each cube, the adjacent cubes of a lower colour, which its scatter waits for.
+void SparseGrid::make_cube_dependencies(
+    const std::vector<std::array<std::int64_t, 3>>& cube_coords) {
   std::unordered_map<std::uint64_t, int> cube_index;
   for (std::size_t q = 0; q < cubes_.size(); ++q) {
     cube_index.emplace(key(cube_coords[q][0], cube_coords[q][1], cube_coords[q][2]),
@@ -282,8 +299,16 @@ void SparseGrid::make_blocks() {
     }
     cube_dep_start_.push_back(static_cast<int>(cube_deps_.size()));
   }
-  home_key_ = keys;
-  home_reach_ = reach;
+}
+
+void SparseGrid::make_blocks() {
+  block_index_.clear();
+  block_coords_.clear();
+  const std::size_t nh = make_home_slots();
+  order_blocks_along_curve(nh);
+  make_cube_dependencies(make_cubes(nh));
+  home_key_ = scratch_keys_;
+  home_reach_ = scratch_reach_;
   group_particles();
   const std::size_t nn = block_coords_.size() * kBlockNodes;
   nodes.assign(nn, Node{});

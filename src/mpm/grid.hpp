@@ -109,8 +109,13 @@ class SparseGrid {
 
  private:
   int block_id(std::int64_t bx, std::int64_t by, std::int64_t bz);
-  bool regroup();          // the blocks kept, particles regrouped; false if blocks are missing
-  void make_blocks();      // the blocks made again from scratch_keys_ and scratch_reach_
+  bool regroup();      // the blocks kept, particles regrouped; false if blocks are missing
+  void make_blocks();  // the blocks made again from scratch_keys_ and scratch_reach_
+  // make_blocks' steps, in their order.
+  std::size_t make_home_slots();
+  void order_blocks_along_curve(std::size_t nh);
+  std::vector<std::array<std::int64_t, 3>> make_cubes(std::size_t nh);
+  void make_cube_dependencies(const std::vector<std::array<std::int64_t, 3>>& cube_coords);
   void group_particles();  // order_ and start_ from home_
   void find_live_blocks();
   void zero_live_blocks();
