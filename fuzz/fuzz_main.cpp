@@ -24,6 +24,13 @@ const snapjump::fuzz::Target* chosen() {
 }
 }  // namespace
 
+// Called once before the first input: the chosen target's one-time setup runs here, outside the
+// time that -timeout allows each input.
+extern "C" int LLVMFuzzerInitialize(int* /*argc*/, char*** /*argv*/) {
+  if (const auto* t = chosen(); t->setup != nullptr) t->setup();
+  return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   chosen()->run(std::string_view(reinterpret_cast<const char*>(data), size));
   return 0;

@@ -90,6 +90,11 @@ popper::Popper& popper_of(config::Model model) {
   return *p;
 }
 
+void checkpoint_setup() {
+  (void)popper_of(config::Model::ThreeD);
+  (void)popper_of(config::Model::Axisymmetric);
+}
+
 void checkpoint(std::string_view bytes) {
   for (const auto model : {config::Model::ThreeD, config::Model::Axisymmetric}) {
     try {
@@ -124,8 +129,14 @@ void msh(std::string_view bytes) {
 
 const std::vector<Target>& targets() {
   static const std::vector<Target> all = {
-      {"case", case_file},        {"series", series}, {"table", table}, {"sweep", sweep_spec},
-      {"checkpoint", checkpoint}, {"vtu", vtu},       {"pvd", pvd},     {"msh", msh},
+      {"case", case_file},
+      {"series", series},
+      {"table", table},
+      {"sweep", sweep_spec},
+      {"checkpoint", checkpoint, checkpoint_setup},
+      {"vtu", vtu},
+      {"pvd", pvd},
+      {"msh", msh},
   };
   return all;
 }

@@ -13,6 +13,9 @@ namespace snapjump::fuzz {
 struct Target {
   const char* name;  // also the folder of its inputs under tests/data/fuzz/
   void (*run)(std::string_view bytes);
+  // What the target builds once before its first input (nullptr: nothing), so that libFuzzer's
+  // per-input timeout measures the reader alone.
+  void (*setup)() = nullptr;
 };
 
 // All targets: case (a case file), series (a time series or force-plate record, CSV), table (a
