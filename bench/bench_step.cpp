@@ -8,6 +8,14 @@
 //   BM_StepSize/<scale>         one thread, the cap meshed with element size sqrt(8)^-scale times
 //                               the default's (scale -1, 0, 1: particle counts a factor of about 8
 //                               apart), the same grid: the cost per particle-step should not grow
+//   BM_StepGraded/<threads>     the default cap graded as docs/popper.md's example (1 mm within
+//                               4 mm of the rim, 2 mm within 18 mm of the apex; 23,601 particles),
+//                               untuned: its particle-steps per second against BM_StepSize/1's
+//                               (a uniform cap of 1.38 mm, 36,927 particles) say what the
+//                               irregular mesh costs in locality
+//   BM_StepScaling/<threads>/<graded>  the default cap (0) and the graded one (1), untuned, at
+//                               1, 2, 4, ... threads up to the machine's cores: the thread
+//                               scaling table of scripts/thread_scaling.sh
 // Reports ms per step and particle-steps per second.
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -27,14 +35,23 @@ namespace {
 
 using namespace snapjump;
 
-// The default case's cap, element size scaled by sqrt(8)^-scale, apex a little above the plate.
+// The default case's cap, element size scaled by sqrt(8)^-scale (or graded: kGraded), apex a
+// little above the plate.
+constexpr int kGraded = 100;
 const fem::Body& cap(int scale) {
   static std::map<int, std::unique_ptr<fem::Body>> bodies;
   auto& b = bodies[scale];
   if (!b) {
     const auto c = config::default_case();
     auto spec = popper::resolve_numerics(c).cap;
-    spec.element_size *= std::pow(std::sqrt(8.0), -scale);
+    if (scale == kGraded) {
+      spec.rim_size = 1e-3;
+      spec.rim_band = 4e-3;
+      spec.contact_size = 2e-3;
+      spec.contact_band = 18e-3;
+    } else {
+      spec.element_size *= std::pow(std::sqrt(8.0), -scale);
+    }
     auto m = mesh::make_cap_mesh(spec);
     mesh::translate_z(m, c.shell.R + c.shell.h);
     mesh::sort_along_curve(m);  // as the popper does
@@ -129,6 +146,38 @@ BENCHMARK(BM_StepSize)
     ->Arg(-1)
     ->Arg(0)
     ->Arg(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
+
+void BM_StepGraded(benchmark::State& state) {
+  const auto& body = cap(kGraded);
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  run_steps(state, body, false);
+}
+BENCHMARK(BM_StepGraded)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
+
+// 1, 2, 4, ... threads and the machine's core count, for each mesh.
+void scaling_arguments(benchmark::internal::Benchmark* b) {
+  const int cores = omp_get_num_procs();
+  for (int graded = 0; graded <= 1; ++graded) {
+    for (int t = 1; t < cores; t *= 2) b->Args({t, graded});
+    b->Args({cores, graded});
+  }
+}
+
+void BM_StepScaling(benchmark::State& state) {
+  const auto& body = cap(state.range(1) != 0 ? kGraded : 0);
+  omp_set_num_threads(static_cast<int>(state.range(0)));
+  run_steps(state, body, false);
+}
+BENCHMARK(BM_StepScaling)
+    ->Apply(scaling_arguments)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(3.0);
