@@ -444,5 +444,25 @@ TEST(SweepTable, AnOutcomeIsNeverBlankAndAnUndeterminedOneCarriesItsReason) {
   EXPECT_EQ(r2.rfind("run-0002,completed,Thrown,", 0), 0u) << r2;
 }
 
+// Every sweep under examples/sweeps/ loads (load_spec builds every run's case, so a bad key or
+// value in any run fails here), with the runs its comment announces for the lift sweeps.
+TEST(SweepSpec, TheExampleSweepsLoad) {
+  const auto dir = std::filesystem::path(SNAPJUMP_SOURCE_DIR) / "examples" / "sweeps";
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".toml") continue;
+    SCOPED_TRACE(entry.path().string());
+    Spec spec;
+    EXPECT_NO_THROW(spec = load_spec(entry.path()));
+    EXPECT_FALSE(spec.runs.empty());
+    if (entry.path().filename() == "lift-axi.toml") {
+      EXPECT_EQ(spec.runs.size(), 10u);
+      EXPECT_EQ(make_case(spec, spec.runs.front()).numerics.model, config::Model::Axisymmetric);
+    }
+    ++count;
+  }
+  EXPECT_GE(count, 6);
+}
+
 }  // namespace
 }  // namespace snapjump::sweep
