@@ -7,16 +7,24 @@
 // bulk energy at one point per element (fem::BulkRule::centroid), free of volumetric locking;
 // `axisymmetric-full` the axisymmetric body with its bulk energy at the full 3 x 3 rule.
 //
-// Every millisecond and at the end of each phase the elements are checked for folds
-// (fem/fold_check.hpp): the first fold ends the probe with its time, pressure and element, unless
+// Every millisecond (--check-every MS) and at the end of each phase the elements are checked for
+// folds (fem/fold_check.hpp): the first fold ends the probe with its time, pressure and element,
+// unless
 // --keep-going, which counts the checks that found one and goes on (to see where a folded shell
 // ends up). --no-rim-contacts turns off the axisymmetric model's contacts at the rim (the
 // container's face and the inner surface against itself, axi/contact.hpp), to measure what they do.
+// For the 3D body: --face puts the container's face around the rim, as the popper's held phase
+// has it (core::ContainerFace; without it nothing stops the shell folding up past the rim),
+// --graded grades the cap as docs/popper.md's example (1 mm within 4 mm of the
+// rim, 2 mm within 18 mm of the apex, ELEMENT_SIZE between), --time-step-factor F sets the
+// explicit step's factor (default 0.4), and --step-limit prints at every check the step over the
+// current state's stability limit, dt omega_max(x) / 2 (fem::Body::highest_frequency at x): above
+// 1 central differences are unstable in that state.
 //
 //   build/inverted_cap [--keep-going] [--no-rim-contacts] axisymmetric|axisymmetric-full THROUGH
 //   ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
-//   build/inverted_cap [--keep-going] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC]
-//   [R_mm h_mm [PHI_deg]]
+//   build/inverted_cap [--keep-going] [--check-every MS] [--face] [--graded] [--time-step-factor F]
+//   [--step-limit] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
 #include <fmt/format.h>
 
 #include <cmath>
@@ -28,6 +36,7 @@
 
 #include "axi/body.hpp"
 #include "axi/dynamics.hpp"
+#include "core/container_face.hpp"
 #include "fem/body.hpp"
 #include "fem/explicit.hpp"
 #include "mesh/cap_mesher.hpp"
@@ -49,12 +58,13 @@ struct Result {
 // the fold check (fem::FoldedElement; called every millisecond and at the end of each phase); p is
 // the pressure difference the driver reads.
 template <typename Step, typename Time, typename State, typename Check>
-Result run(double& p, double pc, double final_dp, Step step, Time time, State state, Check check) {
-  double next_check = 1e-3;
+Result run(double& p, double pc, double final_dp, double every, Step step, Time time, State state,
+           Check check) {
+  double next_check = every;
   const auto checked_step = [&] {
     step();
     if (time() >= next_check) {
-      next_check += 1e-3;
+      next_check += every;
       check();
     }
   };
@@ -104,7 +114,8 @@ struct FoldLog {
 
 int main(int argc_all, char** argv_all) {
   FoldLog folds;
-  bool rim_contacts = true;
+  bool rim_contacts = true, graded = false, step_limit = false, face = false;
+  double step_factor = 0.4, every = 1e-3;
   std::vector<char*> positional;
   for (int i = 0; i < argc_all; ++i) {
     const std::string a = argv_all[i];
@@ -112,6 +123,16 @@ int main(int argc_all, char** argv_all) {
       folds.keep_going = true;
     } else if (a == "--no-rim-contacts") {
       rim_contacts = false;
+    } else if (a == "--graded") {
+      graded = true;
+    } else if (a == "--face") {
+      face = true;
+    } else if (a == "--step-limit") {
+      step_limit = true;
+    } else if (a == "--check-every" && i + 1 < argc_all) {
+      every = 1e-3 * std::atof(argv_all[++i]);
+    } else if (a == "--time-step-factor" && i + 1 < argc_all) {
+      step_factor = std::atof(argv_all[++i]);
     } else {
       positional.push_back(argv_all[i]);
     }
@@ -123,8 +144,9 @@ int main(int argc_all, char** argv_all) {
         stderr,
         "usage: {0} [--keep-going] [--no-rim-contacts] axisymmetric|axisymmetric-full THROUGH "
         "ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n"
-        "       {0} [--keep-going] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] "
-        "[R_mm h_mm [PHI_deg]]\n",
+        "       {0} [--keep-going] [--check-every MS] [--face] [--graded] [--time-step-factor F] "
+        "[--step-limit] "
+        "3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n",
         argv[0]);
     return 2;
   }
@@ -153,7 +175,7 @@ int main(int argc_all, char** argv_all) {
       d.set_rim_contacts(rim_contacts);
       const auto& x = d.positions();
       r = run(
-          p, pc, final_dp, [&] { d.step(); }, [&] { return d.time(); },
+          p, pc, final_dp, every, [&] { d.step(); }, [&] { return d.time(); },
           [&] {
             Result s;
             const double rim = x.z[body.outer().back()];
@@ -176,19 +198,31 @@ int main(int argc_all, char** argv_all) {
       const bool reduced = model == "3d-reduced";
       const int layers = std::atoi(argv[2]);
       const double size = 1e-3 * std::atof(argv[3]);
-      const fem::Body body(
-          mesh::make_cap_mesh({.R = R, .h = h, .phi = phi, .element_size = size, .layers = layers}),
-          material, reduced ? fem::BulkRule::centroid : fem::BulkRule::full);
+      mesh::CapSpec spec{.R = R, .h = h, .phi = phi, .element_size = size, .layers = layers};
+      if (graded) {
+        spec.rim_size = 1e-3;
+        spec.rim_band = 4e-3;
+        spec.contact_size = 2e-3;
+        spec.contact_band = 18e-3;
+      }
+      const fem::Body body(mesh::make_cap_mesh(spec), material,
+                           reduced ? fem::BulkRule::centroid : fem::BulkRule::full);
       fem::ExplicitOptions o;
-      o.time_step_factor = 0.4;
+      o.time_step_factor = step_factor;
+      if (face) o.container_face = core::container_face(R, h, phi);
       o.damping = damping;
       o.pressure = [&p](double) { return p; };
       fem::ExplicitDriver d(body, o);
+      mesh::Points mode;  // the power iteration's last vector, for --step-limit's next check
+      if (step_limit) {
+        fmt::print("reference state: dt omega_max / 2 = {:.3f}\n",
+                   0.5 * d.dt() * body.highest_frequency(body.mesh().nodes, &mode));
+      }
       const auto& m = body.mesh();
       std::vector<char> outer(body.num_nodes(), 0);
       for (int a : m.outer) outer[a] = 1;
       r = run(
-          p, pc, final_dp, [&] { d.step(); }, [&] { return d.time(); },
+          p, pc, final_dp, every, [&] { d.step(); }, [&] { return d.time(); },
           [&] {
             const auto& x = d.positions();
             double rim = 0.0;
@@ -212,10 +246,18 @@ int main(int argc_all, char** argv_all) {
             s.lowest_below_rim = rim - lowest;
             return s;
           },
-          [&] { folds.run([&] { body.check_folds(d.positions()); }, d.time(), p / pc); });
-      mesh = fmt::format("3D{}, {} layers, element size {:.3g} mm, {} nodes",
+          [&] {
+            if (step_limit) {
+              const double omega = body.highest_frequency(d.positions(), &mode);
+              fmt::print("t = {:.4f} s, delta_p = {:.3g} p_c: dt omega_max / 2 = {:.3f}\n",
+                         d.time(), p / pc, 0.5 * d.dt() * omega);
+            }
+            folds.run([&] { body.check_folds(d.positions()); }, d.time(), p / pc);
+          });
+      mesh = fmt::format("3D{}, {} layers, element size {:.3g} mm{}, {} nodes, dt = {:.3g} us{}",
                          reduced ? " (bulk at the centroid)" : "", layers, 1e3 * size,
-                         body.num_nodes());
+                         mesh::grading_summary(spec), body.num_nodes(), 1e6 * d.dt(),
+                         face ? ", the container's face around the rim" : "");
     } else {
       fmt::print(stderr, "model must be axisymmetric, axisymmetric-full, 3d or 3d-reduced\n");
       return 2;

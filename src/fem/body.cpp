@@ -318,16 +318,23 @@ double Body::stable_time_step(double factor) const {
 // Power iteration on M^-1 K, K v from the forces of a small displacement eps v about the
 // reference state (where the forces vanish): the iterate tends to the highest mode, its Rayleigh
 // quotient to omega_max^2.
-double Body::highest_frequency() const {
+double Body::highest_frequency() const { return highest_frequency(mesh_.nodes); }
+
+double Body::highest_frequency(const mesh::Points& at, mesh::Points* mode) const {
   const std::size_t n = num_nodes();
-  mesh::Points v, x = mesh_.nodes, f;
-  for (std::size_t a = 0; a < n; ++a) {  // a start vector with every mode in it
-    const auto d = static_cast<double>(a);
-    v.push_back(std::sin(1.0 + 3.7 * d), std::cos(2.0 + 5.3 * d), std::sin(0.5 + 7.1 * d));
+  mesh::Points v, x = at, f, f0;
+  if (mode != nullptr && mode->size() == n) {
+    v = *mode;
+  } else {
+    for (std::size_t a = 0; a < n; ++a) {  // a start vector with every mode in it
+      const auto d = static_cast<double>(a);
+      v.push_back(std::sin(1.0 + 3.7 * d), std::cos(2.0 + 5.3 * d), std::sin(0.5 + 7.1 * d));
+    }
   }
-  const auto& X = mesh_.nodes;
+  internal_forces(at, f0);
   double lambda = 0.0;
-  for (int it = 0; it < 500; ++it) {
+  bool converged = false;
+  for (int it = 0; it < 500 && !converged; ++it) {
     double norm = 0.0;
     for (std::size_t a = 0; a < n; ++a) norm += v.x[a] * v.x[a] + v.y[a] * v.y[a] + v.z[a] * v.z[a];
     norm = std::sqrt(norm);
@@ -336,18 +343,19 @@ double Body::highest_frequency() const {
       v.y[a] /= norm;
       v.z[a] /= norm;
     }
-    // A displacement of about 1e-7 of the smallest node spacing per node.
+    // A displacement of about 1e-7 of the smallest node spacing per node; K v from the change of
+    // the internal forces.
     const double eps = 1e-7 * min_spacing_ * std::sqrt(static_cast<double>(n));
     for (std::size_t a = 0; a < n; ++a) {
-      x.x[a] = X.x[a] + eps * v.x[a];
-      x.y[a] = X.y[a] + eps * v.y[a];
-      x.z[a] = X.z[a] + eps * v.z[a];
+      x.x[a] = at.x[a] + eps * v.x[a];
+      x.y[a] = at.y[a] + eps * v.y[a];
+      x.z[a] = at.z[a] + eps * v.z[a];
     }
     internal_forces(x, f);
     double vw = 0.0, vv = 0.0;
     for (std::size_t a = 0; a < n; ++a) {
       const double s = -1.0 / (eps * mass_[a]);
-      const double w[3] = {s * f.x[a], s * f.y[a], s * f.z[a]};
+      const double w[3] = {s * (f.x[a] - f0.x[a]), s * (f.y[a] - f0.y[a]), s * (f.z[a] - f0.z[a])};
       vw += w[0] * v.x[a] + w[1] * v.y[a] + w[2] * v.z[a];
       vv += v.x[a] * v.x[a] + v.y[a] * v.y[a] + v.z[a] * v.z[a];
       v.x[a] = w[0];
@@ -355,9 +363,11 @@ double Body::highest_frequency() const {
       v.z[a] = w[2];
     }
     const double next = vw / vv;
-    if (it > 20 && std::abs(next - lambda) < 1e-5 * std::abs(next)) return std::sqrt(next);
+    converged = it > (mode != nullptr && mode->size() == n ? 3 : 20) &&
+                std::abs(next - lambda) < 1e-5 * std::abs(next);
     lambda = next;
   }
+  if (mode != nullptr) *mode = v;
   return std::sqrt(std::max(lambda, 0.0));
 }
 

@@ -105,6 +105,10 @@ class Body {
   // The highest natural frequency of the free, undeformed body (lumped masses), by power
   // iteration [rad/s]: central differences are stable for dt < 2 / omega_max.
   [[nodiscard]] double highest_frequency() const;
+  // The same of the body linearised about the state x: power iteration on M^-1 K(x), K applied
+  // by differences of the internal forces. `mode`, when given with one vector per node, starts
+  // the iteration (a warm start from a nearby state) and receives its last vector.
+  [[nodiscard]] double highest_frequency(const mesh::Points& x, mesh::Points* mode = nullptr) const;
 
   // Element e's reference shape gradients dN_a/dX at its quadrature point q (of 4), as
   // [node][3], and that point's weight (rule weight * det(dX/dxi)).
