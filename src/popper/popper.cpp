@@ -264,6 +264,27 @@ Preparation Popper::prepare(const Progress& progress) {
   return prep;
 }
 
+namespace {
+
+// The fold checks within a stepped phase of the preparation (Settings::fold_check_every), from
+// the model's clock at the phase's start.
+class FoldClock {
+ public:
+  FoldClock(const ShellModel& m, double every) : m_(m), every_(every), next_(m.time() + every) {}
+  // After each step: checks the elements once the clock has passed the next check's time.
+  void tick() {
+    if (m_.time() < next_) return;
+    m_.check_folds();
+    next_ = m_.time() + every_;
+  }
+
+ private:
+  const ShellModel& m_;
+  double every_, next_;
+};
+
+}  // namespace
+
 // Phase 1, container held in the air: raise the suction past the buckling pressure until the
 // shell inverts. The syringe holds the pressure difference: the gas is held at it before each
 // step. Where the model follows the pressure-volume branch instead (settings.quasi_static), the
@@ -286,10 +307,12 @@ std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress
     }
   }
   SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
+  FoldClock folds(m, st.fold_check_every);
   while (m.time() < st.ramp + st.max_wait) {
     const double p = buckling_suction(m.time(), pc);
     gas_.hold(p);
     m.step();
+    folds.tick();
     if (!onset.pressure() && m.steps() % st.onset_sample_every == 0) {
       onset.sample(m.time(), m.cavity_volume(), p);
       prep.buckling_pressure = onset.pressure();
@@ -359,10 +382,12 @@ bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double p
   const auto& st = settings_;
   auto& m = *model_;
   const double t0 = m.time();
+  FoldClock folds(m, st.fold_check_every);
   while (m.time() < t0 + st.down + st.settle) {
     const double f = std::min(1.0, (m.time() - t0) / st.down);
     gas_.hold(from + f * (delta_p_j_ - from));
     m.step();
+    folds.tick();
     if (progress && m.steps() % st.progress_every == 0)
       progress("set delta_p_j", m.time() - t0, (m.time() - t0) / (st.down + st.settle));
   }
@@ -391,9 +416,11 @@ void Popper::ground(Preparation& prep, const Progress& progress) {
   m.set_damping(damping);
   double impulse = 0.0, window = 0.0;
   int good_windows = 0;
+  FoldClock folds(m, st.fold_check_every);
   while (m.time() < st.max_time) {
     update_container_force(damping);
     m.step();
+    folds.tick();
     impulse += m.plate_force() * m.dt();
     window += m.dt();
     if (window >= st.window) {

@@ -166,6 +166,10 @@ struct PreparationSettings {
   double max_time = 0.2;  // [s]
   // Progress is reported (and stop requests seen) every this many steps.
   int progress_every = 200;
+  // The elements are checked for folds (ShellModel::check_folds) every fold_check_every of a
+  // stepped preparation phase's model time as well as at its end, so that a fold which comes and
+  // goes within a phase ends the run too.
+  double fold_check_every = 1e-3;  // [s]
 };
 
 // The onset of a snap under a rising suction, from samples of the cavity volume: the first

@@ -97,8 +97,9 @@ class ShellModel {
   [[nodiscard]] virtual double kinetic_energy() const = 0;
   [[nodiscard]] virtual double strain_energy() const = 0;
   // Throws fem::FoldedElement where an element's det F is not positive somewhere inside it
-  // (between its quadrature points too: fem/fold_check.hpp). The protocol calls it at the end of
-  // each preparation phase and at every sample of the series.
+  // (between its quadrature points too: fem/fold_check.hpp). The protocol calls it every
+  // millisecond of a stepped preparation phase, at the end of each preparation phase and at every
+  // sample of the series.
   virtual void check_folds() const = 0;
   // Of the shell's weight, g along -z [J].
   [[nodiscard]] virtual double potential_energy(double g) const = 0;
