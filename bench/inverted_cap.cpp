@@ -17,14 +17,16 @@
 // has it (core::ContainerFace; without it nothing stops the shell folding up past the rim),
 // --graded grades the cap as docs/popper.md's example (1 mm within 4 mm of the
 // rim, 2 mm within 18 mm of the apex, ELEMENT_SIZE between), --time-step-factor F sets the
-// explicit step's factor (default 0.4), and --step-limit prints at every check the step over the
+// explicit step's factor (default 0.4), --damping-factor D multiplies the damping (3: the popper's
+// held phases), and --step-limit prints at every check the step over the
 // current state's stability limit, dt omega_max(x) / 2 (fem::Body::highest_frequency at x): above
 // 1 central differences are unstable in that state.
 //
 //   build/inverted_cap [--keep-going] [--no-rim-contacts] axisymmetric|axisymmetric-full THROUGH
 //   ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
-//   build/inverted_cap [--keep-going] [--check-every MS] [--face] [--graded] [--time-step-factor F]
-//   [--step-limit] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
+//   build/inverted_cap [--keep-going] [--check-every MS] [--damping-factor D] [--face] [--graded]
+//   [--time-step-factor F] [--step-limit] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm
+//   [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]
 #include <fmt/format.h>
 
 #include <cmath>
@@ -115,7 +117,7 @@ struct FoldLog {
 int main(int argc_all, char** argv_all) {
   FoldLog folds;
   bool rim_contacts = true, graded = false, step_limit = false, face = false;
-  double step_factor = 0.4, every = 1e-3;
+  double step_factor = 0.4, every = 1e-3, damping_factor = 1.0;
   std::vector<char*> positional;
   for (int i = 0; i < argc_all; ++i) {
     const std::string a = argv_all[i];
@@ -129,6 +131,8 @@ int main(int argc_all, char** argv_all) {
       face = true;
     } else if (a == "--step-limit") {
       step_limit = true;
+    } else if (a == "--damping-factor" && i + 1 < argc_all) {
+      damping_factor = std::atof(argv_all[++i]);
     } else if (a == "--check-every" && i + 1 < argc_all) {
       every = 1e-3 * std::atof(argv_all[++i]);
     } else if (a == "--time-step-factor" && i + 1 < argc_all) {
@@ -144,9 +148,9 @@ int main(int argc_all, char** argv_all) {
         stderr,
         "usage: {0} [--keep-going] [--no-rim-contacts] axisymmetric|axisymmetric-full THROUGH "
         "ALONG [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n"
-        "       {0} [--keep-going] [--check-every MS] [--face] [--graded] [--time-step-factor F] "
-        "[--step-limit] "
-        "3d|3d-reduced LAYERS ELEMENT_SIZE_mm [FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n",
+        "       {0} [--keep-going] [--check-every MS] [--damping-factor D] [--face] [--graded] "
+        "[--time-step-factor F] [--step-limit] 3d|3d-reduced LAYERS ELEMENT_SIZE_mm "
+        "[FINAL_DP_OVER_PC] [R_mm h_mm [PHI_deg]]\n",
         argv[0]);
     return 2;
   }
@@ -158,8 +162,9 @@ int main(int argc_all, char** argv_all) {
     const double phi = (argc > 7 ? std::atof(argv[7]) : 80.0) * std::numbers::pi / 180.0;
     const double pc = theory::zoelly_pressure(kE, h, R, kNu);
     const auto material = fem::Material::from_young(kE, kNu, kRho);
-    // The popper's preparation damping; the axisymmetric model's held phases use three times it.
-    const double damping = 0.3 * std::sqrt(kE / kRho) / R;
+    // The popper's preparation damping (its held phases use PreparationSettings::held_damping
+    // = 3 times it: --damping-factor 3), times --damping-factor.
+    const double damping = damping_factor * 0.3 * std::sqrt(kE / kRho) / R;
     double p = 0.0;
     Result r;
     std::string mesh;
