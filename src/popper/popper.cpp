@@ -266,11 +266,12 @@ Preparation Popper::prepare(const Progress& progress) {
 
 namespace {
 
-// The fold checks within a stepped phase of the preparation (Settings::fold_check_every), from
-// the model's clock at the phase's start.
+// The fold checks within a stepped phase of the preparation, every kFoldCheckInterval from the
+// model's clock at the phase's start.
 class FoldClock {
  public:
-  FoldClock(const ShellModel& m, double every) : m_(m), every_(every), next_(m.time() + every) {}
+  explicit FoldClock(const ShellModel& m)
+      : m_(m), every_(kFoldCheckInterval), next_(m.time() + kFoldCheckInterval) {}
   // After each step: checks the elements once the clock has passed the next check's time.
   void tick() {
     if (m_.time() < next_) return;
@@ -307,7 +308,7 @@ std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress
     }
   }
   SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
-  FoldClock folds(m, st.fold_check_every);
+  FoldClock folds(m);
   while (m.time() < st.ramp + st.max_wait) {
     const double p = buckling_suction(m.time(), pc);
     gas_.hold(p);
@@ -382,7 +383,7 @@ bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double p
   const auto& st = settings_;
   auto& m = *model_;
   const double t0 = m.time();
-  FoldClock folds(m, st.fold_check_every);
+  FoldClock folds(m);
   while (m.time() < t0 + st.down + st.settle) {
     const double f = std::min(1.0, (m.time() - t0) / st.down);
     gas_.hold(from + f * (delta_p_j_ - from));
@@ -416,7 +417,7 @@ void Popper::ground(Preparation& prep, const Progress& progress) {
   m.set_damping(damping);
   double impulse = 0.0, window = 0.0;
   int good_windows = 0;
-  FoldClock folds(m, st.fold_check_every);
+  FoldClock folds(m);
   while (m.time() < st.max_time) {
     update_container_force(damping);
     m.step();

@@ -166,10 +166,6 @@ struct PreparationSettings {
   double max_time = 0.2;  // [s]
   // Progress is reported (and stop requests seen) every this many steps.
   int progress_every = 200;
-  // The elements are checked for folds (ShellModel::check_folds) every fold_check_every of a
-  // stepped preparation phase's model time as well as at its end, so that a fold which comes and
-  // goes within a phase ends the run too.
-  double fold_check_every = 1e-3;  // [s]
 };
 
 // The onset of a snap under a rising suction, from samples of the cavity volume: the first
@@ -296,9 +292,11 @@ class Popper {
   double next_fold_check_ = -1e300;  // simulated time of the next fold check in sample()
 };
 
-// How often the series' samples check the shell for folds [s]: a check costs about as much as a
-// few steps of the 3D default popper, a sample comes every probe interval (0.2 ms, 25 steps), and a
-// fold at the clamp builds up over tens of milliseconds of suction (docs/axisymmetric.md).
+// How often the shell is checked for folds [s] in the preparation's stepped phases (besides at
+// each one's end, so that a fold which comes and goes within a phase ends the run too) and in
+// the series' samples: a check costs about as much as a few steps of the 3D default popper, a
+// sample comes every probe interval (0.2 ms, 25 steps), and a fold at the clamp builds up over
+// tens of milliseconds of suction (docs/axisymmetric.md).
 inline constexpr double kFoldCheckInterval = 1e-3;
 
 }  // namespace snapjump::popper
