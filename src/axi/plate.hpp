@@ -27,7 +27,6 @@ class PlateRule {
   // The reaction on the shell in the last step (up is positive) [N], and whether it pushed node a.
   [[nodiscard]] double force() const { return force_; }
   [[nodiscard]] bool loaded(std::size_t a) const { return loaded_[a] != 0; }
-  [[nodiscard]] double mu() const { return mu_; }
 
  private:
   double mu_;

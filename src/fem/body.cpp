@@ -323,7 +323,8 @@ double Body::highest_frequency() const { return highest_frequency(mesh_.nodes); 
 double Body::highest_frequency(const mesh::Points& at, mesh::Points* mode) const {
   const std::size_t n = num_nodes();
   mesh::Points v, x = at, f, f0;
-  if (mode != nullptr && mode->size() == n) {
+  const bool warm = mode != nullptr && mode->size() == n;
+  if (warm) {
     v = *mode;
   } else {
     for (std::size_t a = 0; a < n; ++a) {  // a start vector with every mode in it
@@ -363,8 +364,7 @@ double Body::highest_frequency(const mesh::Points& at, mesh::Points* mode) const
       v.z[a] = w[2];
     }
     const double next = vw / vv;
-    converged = it > (mode != nullptr && mode->size() == n ? 3 : 20) &&
-                std::abs(next - lambda) < 1e-5 * std::abs(next);
+    converged = it > (warm ? 3 : 20) && std::abs(next - lambda) < 1e-5 * std::abs(next);
     lambda = next;
   }
   if (mode != nullptr) *mode = v;

@@ -220,19 +220,13 @@ void MpmShell::step() {
 
 // Before either phase the shell is at rest in its reference state at t = 0.
 double MpmShell::time() const {
-  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->time();
-  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->time();
-  return 0.0;
+  return stepping([](const auto& s) { return s.time(); }, 0.0);
 }
 double MpmShell::dt() const {
-  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->dt();
-  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->dt();
-  return time_step_.dt;
+  return stepping([](const auto& s) { return s.dt(); }, time_step_.dt);
 }
 long MpmShell::steps() const {
-  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->steps();
-  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->steps();
-  return 0;
+  return stepping([](const auto& s) { return s.steps(); }, 0L);
 }
 void MpmShell::reset_time() { on_plate("reset_time").stepper->reset_time(); }
 
@@ -245,17 +239,13 @@ void MpmShell::zero_velocities() {
 }
 
 double MpmShell::kinetic_energy() const {
-  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->kinetic_energy();
-  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->kinetic_energy();
-  return 0.0;
+  return stepping([](const auto& s) { return s.kinetic_energy(); }, 0.0);
 }
 // The step's chosen thread count, for the parallel loops between steps (a sample's strain energy,
 // the gas's cavity volume): under load a region at two threads waits for a descheduled thread,
 // as a step would (parallel::ThreadTuner).
 int MpmShell::chosen_threads() const {
-  if (const auto* p = std::get_if<OnPlate>(&phase_)) return p->stepper->thread_tuner().chosen();
-  if (const auto* h = std::get_if<Held>(&phase_)) return h->driver->thread_tuner().chosen();
-  return parallel::max_threads();
+  return stepping([](const auto& s) { return s.thread_tuner().chosen(); }, parallel::max_threads());
 }
 
 void MpmShell::check_folds() const {

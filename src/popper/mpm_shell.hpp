@@ -89,6 +89,14 @@ class MpmShell final : public ShellModel, public ShellReport {
   // Built and at rest, neither phase started yet.
   struct Unstarted {};
 
+  // f applied to the phase's integrator (the MPM stepper or the finite-element driver, which
+  // share time, dt, steps, kinetic_energy and thread_tuner), or at_rest before either phase.
+  template <typename F, typename T>
+  T stepping(F f, T at_rest) const {
+    if (const auto* p = std::get_if<OnPlate>(&phase_)) return f(*p->stepper);
+    if (const auto* h = std::get_if<Held>(&phase_)) return f(*h->driver);
+    return at_rest;
+  }
   // The shell on the plate, or std::logic_error naming `method` in any other phase.
   [[nodiscard]] const OnPlate& on_plate(const char* method) const;
   [[nodiscard]] OnPlate& on_plate(const char* method);

@@ -264,28 +264,6 @@ Preparation Popper::prepare(const Progress& progress) {
   return prep;
 }
 
-namespace {
-
-// The fold checks within a stepped phase of the preparation, every kFoldCheckInterval from the
-// model's clock at the phase's start.
-class FoldClock {
- public:
-  explicit FoldClock(const ShellModel& m)
-      : m_(m), every_(kFoldCheckInterval), next_(m.time() + kFoldCheckInterval) {}
-  // After each step: checks the elements once the clock has passed the next check's time.
-  void tick() {
-    if (m_.time() < next_) return;
-    m_.check_folds();
-    next_ = m_.time() + every_;
-  }
-
- private:
-  const ShellModel& m_;
-  double every_, next_;
-};
-
-}  // namespace
-
 // Phase 1, container held in the air: raise the suction past the buckling pressure until the
 // shell inverts. The syringe holds the pressure difference: the gas is held at it before each
 // step. Where the model follows the pressure-volume branch instead (settings.quasi_static), the
@@ -308,12 +286,12 @@ std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress
     }
   }
   SnapOnset onset(st.reference_window[0] * pc, st.reference_window[1] * pc, st.onset_factor);
-  FoldClock folds(m);
+  FoldSchedule folds(m.time() + kFoldCheckInterval);
   while (m.time() < st.ramp + st.max_wait) {
     const double p = buckling_suction(m.time(), pc);
     gas_.hold(p);
     m.step();
-    folds.tick();
+    if (folds.due(m.time())) m.check_folds();
     if (!onset.pressure() && m.steps() % st.onset_sample_every == 0) {
       onset.sample(m.time(), m.cavity_volume(), p);
       prep.buckling_pressure = onset.pressure();
@@ -383,12 +361,12 @@ bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double p
   const auto& st = settings_;
   auto& m = *model_;
   const double t0 = m.time();
-  FoldClock folds(m);
+  FoldSchedule folds(m.time() + kFoldCheckInterval);
   while (m.time() < t0 + st.down + st.settle) {
     const double f = std::min(1.0, (m.time() - t0) / st.down);
     gas_.hold(from + f * (delta_p_j_ - from));
     m.step();
-    folds.tick();
+    if (folds.due(m.time())) m.check_folds();
     if (progress && m.steps() % st.progress_every == 0)
       progress("set delta_p_j", m.time() - t0, (m.time() - t0) / (st.down + st.settle));
   }
@@ -417,11 +395,11 @@ void Popper::ground(Preparation& prep, const Progress& progress) {
   m.set_damping(damping);
   double impulse = 0.0, window = 0.0;
   int good_windows = 0;
-  FoldClock folds(m);
+  FoldSchedule folds(m.time() + kFoldCheckInterval);
   while (m.time() < st.max_time) {
     update_container_force(damping);
     m.step();
-    folds.tick();
+    if (folds.due(m.time())) m.check_folds();
     impulse += m.plate_force() * m.dt();
     window += m.dt();
     if (window >= st.window) {
@@ -556,10 +534,7 @@ Sample Popper::sample() {
   if (case_.popper.wire_stiffness) {
     s.kinetic += 0.5 * counterweight_.mass * counterweight_.vz * counterweight_.vz;
   }
-  if (!(s.t < next_fold_check_)) {
-    model_->check_folds();
-    next_fold_check_ = s.t + kFoldCheckInterval;
-  }
+  if (sample_folds_.due(s.t)) model_->check_folds();
   s.elastic = model_->strain_energy();
   // The counterweight's weight is the popper's less mg; an elastic wire adds its stretch's
   // energy beyond the static one.

@@ -6,6 +6,7 @@
 #include <array>
 #include <functional>
 #include <iosfwd>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -172,6 +173,29 @@ struct PreparationSettings {
 // sample past the reference window of pressures whose rate of shrinking exceeds factor times the
 // window's mean rate. The snap is fast where the quasi-static shrinking is slow, so the rule
 // needs no threshold of its own in m^3/s.
+// How often the shell is checked for folds [s] in the preparation's stepped phases (besides at
+// each one's end, so that a fold which comes and goes within a phase ends the run too) and in
+// the series' samples: a check costs about as much as a few steps of the 3D default popper, a
+// sample comes every probe interval (0.2 ms, 25 steps), and a fold at the clamp builds up over
+// tens of milliseconds of suction (docs/axisymmetric.md).
+inline constexpr double kFoldCheckInterval = 1e-3;
+
+// When the shell's next fold check is due: at the first time at or after `first` [s], then every
+// kFoldCheckInterval of simulated time.
+class FoldSchedule {
+ public:
+  explicit FoldSchedule(double first = -std::numeric_limits<double>::infinity()) : next_(first) {}
+  // Whether a check is due at time t; if it is, the next one is due kFoldCheckInterval later.
+  bool due(double t) {
+    if (t < next_) return false;
+    next_ = t + kFoldCheckInterval;
+    return true;
+  }
+
+ private:
+  double next_;
+};
+
 class SnapOnset {
  public:
   // The reference window's pressures [Pa], and the factor.
@@ -289,14 +313,7 @@ class Popper {
   double z_release_ = 0.0;  // container z at t = 0
   double impulse_ = 0.0;    // plate impulse since the last sample
   double impulse_time_ = 0.0;
-  double next_fold_check_ = -1e300;  // simulated time of the next fold check in sample()
+  FoldSchedule sample_folds_;  // sample()'s, from the first sample on
 };
-
-// How often the shell is checked for folds [s] in the preparation's stepped phases (besides at
-// each one's end, so that a fold which comes and goes within a phase ends the run too) and in
-// the series' samples: a check costs about as much as a few steps of the 3D default popper, a
-// sample comes every probe interval (0.2 ms, 25 steps), and a fold at the clamp builds up over
-// tens of milliseconds of suction (docs/axisymmetric.md).
-inline constexpr double kFoldCheckInterval = 1e-3;
 
 }  // namespace snapjump::popper
