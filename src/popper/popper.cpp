@@ -256,7 +256,7 @@ Preparation Popper::prepare(const Progress& progress) {
   const auto suction = buckle(prep, progress, pc);
   if (!suction) return prep;
   if (!set_delta_p_j(prep, progress, pc, *suction)) return prep;
-  ground(prep, progress);
+  if (!ground(prep, progress, pc)) return prep;
   prep.message += fmt::format(
       ", held at delta_p_j = {:.0f} Pa ({:.2f} p_c), grounded in {:.0f} ms: plate force {:.3f} N "
       "for a net weight of {:.3f} N",
@@ -382,8 +382,10 @@ bool Popper::set_delta_p_j(Preparation& prep, const Progress& progress, double p
 }
 
 // Phase 3, ground: lower the popper onto the plate and let the container go, damped, until the
-// plate carries the net weight.
-void Popper::ground(Preparation& prep, const Progress& progress) {
+// plate carries the net weight. A shell whose apex is then on the plate by the analysis's own
+// onset rule (w / R below onset_ratio) has snapped back under the weight: the release would have
+// no snap to measure, and the analysis would take its onset at the release's first sample.
+bool Popper::ground(Preparation& prep, const Progress& progress, double pc) {
   const auto& st = settings_;
   auto& m = *model_;
   gas_.hold(delta_p_j_);
@@ -415,6 +417,19 @@ void Popper::ground(Preparation& prep, const Progress& progress) {
     }
   }
   m.check_folds();
+  const double ratio = measure::AnalysisOptions{}.onset_ratio;
+  if (m.apex_z() < ratio * case_.shell.R) {
+    prep.held = false;
+    grounded_ = false;  // nothing to release
+    prep.message = fmt::format(
+        "{}, held at delta_p_j = {:.0f} Pa ({:.2f} p_c), but it snapped back as it was grounded: "
+        "after {:.0f} ms on the plate its apex stands {:.3g} mm above it (w / R = {:.3g}, below "
+        "the onset's {}), so the release would have no snap",
+        prep.message, delta_p_j_, delta_p_j_ / pc, 1e3 * m.time(), 1e3 * m.apex_z(),
+        m.apex_z() / case_.shell.R, ratio);
+    return false;
+  }
+  return true;
 }
 
 namespace {

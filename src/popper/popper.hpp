@@ -285,7 +285,7 @@ class Popper {
   bool buckled_quasi_statically(Preparation& prep, const ShellModel::QuasiStaticBuckle& qs,
                                 double pc);
   bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc, double from);
-  void ground(Preparation& prep, const Progress& progress);
+  bool ground(Preparation& prep, const Progress& progress, double pc);
   // The protocol's one test of "inverted": the apex above the outer rim.
   [[nodiscard]] bool inverted() const { return model_->apex_z() > model_->outer_rim_z(); }
   // The buckling pressure in words, with the ramp it was measured under.

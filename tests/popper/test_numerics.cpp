@@ -122,6 +122,25 @@ TEST(Protocol, BucklePhaseAloneThenNoSecondPreparation) {
   EXPECT_THROW(pop.release(), std::logic_error);
 }
 
+// Below the branch's p_- (0.20 p_c for this cap) no buckled state is left: the cap that is still
+// inverted in the air after phase 2 snaps back once the plate and its weight touch it, and its
+// apex stands on the plate before the release. That is a preparation that did not hold the shell,
+// not a release whose snap comes at t = 0. At 0.5 p_c (p_hold = 0.26 p_c) the cap stays inverted.
+TEST(Protocol, ACapThatSnapsBackAsItIsGroundedIsNotHeld) {
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = config::Resolution::Coarse;
+  c.protocol.delta_p_j_over_pc = 0.1;
+  Popper low(c, resolve_numerics(c));
+  const auto prep = low.prepare();
+  EXPECT_TRUE(prep.inverted) << prep.message;
+  EXPECT_FALSE(prep.held) << prep.message;
+  EXPECT_NE(prep.message.find("snapped back as it was grounded"), std::string::npos)
+      << prep.message;
+  EXPECT_LT(low.model().apex_z(), 0.03 * c.shell.R);
+  EXPECT_THROW(low.release(), std::logic_error);
+}
+
 TEST(Protocol, SettingsThatCannotRunAreRefused) {
   auto c = config::default_case();
   c.numerics.model = config::Model::Axisymmetric;
