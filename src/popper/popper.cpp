@@ -90,8 +90,10 @@ bool FlightWatch::apex_reached(const Sample& s) {
          s.vz < 0.0;
 }
 
+bool apex_down(double w, double R) { return w < measure::AnalysisOptions{}.onset_ratio * R; }
+
 void FlightWatch::see_apex_gap(double w) {
-  if (w < measure::AnalysisOptions{}.onset_ratio * R) snapped = true;
+  if (apex_down(w, R)) snapped = true;
 }
 
 std::vector<std::string> sample_columns() {
@@ -257,11 +259,14 @@ Preparation Popper::prepare(const Progress& progress) {
   if (!suction) return prep;
   if (!set_delta_p_j(prep, progress, pc, *suction)) return prep;
   if (!ground(prep, progress, pc)) return prep;
-  prep.message += fmt::format(
-      ", held at delta_p_j = {:.0f} Pa ({:.2f} p_c), grounded in {:.0f} ms: plate force {:.3f} N "
-      "for a net weight of {:.3f} N",
-      delta_p_j_, delta_p_j_ / pc, 1e3 * model_->time(), prep.plate_force, case_.popper.net_weight);
+  prep.message +=
+      fmt::format(", {}, grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",
+                  held_words(pc), 1e3 * model_->time(), prep.plate_force, case_.popper.net_weight);
   return prep;
+}
+
+std::string Popper::held_words(double pc) const {
+  return fmt::format("held at delta_p_j = {:.0f} Pa ({:.2f} p_c)", delta_p_j_, delta_p_j_ / pc);
 }
 
 // Phase 1, container held in the air: raise the suction past the buckling pressure until the
@@ -417,16 +422,15 @@ bool Popper::ground(Preparation& prep, const Progress& progress, double pc) {
     }
   }
   m.check_folds();
-  const double ratio = measure::AnalysisOptions{}.onset_ratio;
-  if (m.apex_z() < ratio * case_.shell.R) {
+  if (apex_down(m.apex_z(), case_.shell.R)) {
     prep.held = false;
     grounded_ = false;  // nothing to release
     prep.message = fmt::format(
-        "{}, held at delta_p_j = {:.0f} Pa ({:.2f} p_c), but it snapped back as it was grounded: "
-        "after {:.0f} ms on the plate its apex stands {:.3g} mm above it (w / R = {:.3g}, below "
-        "the onset's {}), so the release would have no snap",
-        prep.message, delta_p_j_, delta_p_j_ / pc, 1e3 * m.time(), 1e3 * m.apex_z(),
-        m.apex_z() / case_.shell.R, ratio);
+        "{}, {}, but it snapped back as it was grounded: after {:.0f} ms on the plate its apex "
+        "stands {:.3g} mm above it (w / R = {:.3g}, below the onset's {}), so the release would "
+        "have no snap",
+        prep.message, held_words(pc), 1e3 * m.time(), 1e3 * m.apex_z(), m.apex_z() / case_.shell.R,
+        measure::AnalysisOptions{}.onset_ratio);
     return false;
   }
   return true;

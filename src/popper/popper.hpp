@@ -88,6 +88,10 @@ struct Sample {
 std::vector<std::string> sample_columns();
 std::vector<double> sample_values(const Sample& s);
 
+// The analysis's onset rule on an apex gap w [m] of a shell of radius R [m]: w / R below its
+// onset ratio, the apex down on the plate.
+bool apex_down(double w, double R);
+
 // Watches the samples of a run for its end: the apex of the flight after the snap. The flight
 // starts when the container leaves the plate going up (no contact, no plate force, rising) once
 // the apex has come down (w / R below the analysis's onset ratio: the snap); a hop on the ring
@@ -169,10 +173,6 @@ struct PreparationSettings {
   int progress_every = 200;
 };
 
-// The onset of a snap under a rising suction, from samples of the cavity volume: the first
-// sample past the reference window of pressures whose rate of shrinking exceeds factor times the
-// window's mean rate. The snap is fast where the quasi-static shrinking is slow, so the rule
-// needs no threshold of its own in m^3/s.
 // How often the shell is checked for folds [s] in the preparation's stepped phases (besides at
 // each one's end, so that a fold which comes and goes within a phase ends the run too) and in
 // the series' samples: a check costs about as much as a few steps of the 3D default popper, a
@@ -196,6 +196,10 @@ class FoldSchedule {
   double next_;
 };
 
+// The onset of a snap under a rising suction, from samples of the cavity volume: the first
+// sample past the reference window of pressures whose rate of shrinking exceeds factor times the
+// window's mean rate. The snap is fast where the quasi-static shrinking is slow, so the rule
+// needs no threshold of its own in m^3/s.
 class SnapOnset {
  public:
   // The reference window's pressures [Pa], and the factor.
@@ -286,6 +290,8 @@ class Popper {
                                 double pc);
   bool set_delta_p_j(Preparation& prep, const Progress& progress, double pc, double from);
   bool ground(Preparation& prep, const Progress& progress, double pc);
+  // "held at delta_p_j = ... Pa (... p_c)", for the preparation's message.
+  [[nodiscard]] std::string held_words(double pc) const;
   // The protocol's one test of "inverted": the apex above the outer rim.
   [[nodiscard]] bool inverted() const { return model_->apex_z() > model_->outer_rim_z(); }
   // The buckling pressure in words, with the ramp it was measured under.

@@ -125,7 +125,8 @@ TEST(Protocol, BucklePhaseAloneThenNoSecondPreparation) {
 // Below the branch's p_- (0.20 p_c for this cap) no buckled state is left: the cap that is still
 // inverted in the air after phase 2 snaps back once the plate and its weight touch it, and its
 // apex stands on the plate before the release. That is a preparation that did not hold the shell,
-// not a release whose snap comes at t = 0. At 0.5 p_c (p_hold = 0.26 p_c) the cap stays inverted.
+// not a release whose snap comes at t = 0. (At the protocol's 0.5 p_c, above p_hold = 0.26 p_c,
+// the same cap is held: ExamplePreparation.)
 TEST(Protocol, ACapThatSnapsBackAsItIsGroundedIsNotHeld) {
   auto c = config::default_case();
   c.numerics.model = config::Model::Axisymmetric;
