@@ -424,6 +424,7 @@ bool Popper::ground(Preparation& prep, const Progress& progress, double pc) {
   m.check_folds();
   if (apex_down(m.apex_z(), case_.shell.R)) {
     prep.held = false;
+    prep.snapped_back_on_plate = true;
     grounded_ = false;  // nothing to release
     prep.message = fmt::format(
         "{}, {}, but it snapped back as it was grounded: after {:.0f} ms on the plate its apex "

@@ -111,6 +111,8 @@ struct FlightWatch {
 struct Preparation {
   bool inverted = false;  // the shell inverted under the buckling pressure
   bool held = false;      // and stayed inverted at delta_p_j
+  // It held at delta_p_j in the air, then snapped back on the plate as it was grounded.
+  bool snapped_back_on_plate = false;
   // Pressure at the onset of the snap [Pa] (PreparationSettings: the onset rule); nothing when
   // the rule did not see one (no sample shrank the cavity onset_factor times faster than the
   // reference window's mean).
