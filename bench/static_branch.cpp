@@ -1,6 +1,7 @@
 // The clamped cap's quasi-static pressure-volume branch in the axisymmetric model
 // (axi/static_branch.hpp): p_c, p_- and, with --csv, every point (V / V0, dp / p_c Zoelly, apex
-// displacement, Newton iterations, deepest self-contact crossing).
+// displacement, Newton iterations, deepest self-contact crossing, the inner surface's crease
+// measure and where it is, axi/surface_stretch.hpp).
 //
 //   build/static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V_OVER_V0] [--grading G]
 //                       [--end-dp DP_OVER_P_ZOELLY]
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "axi/body.hpp"
+#include "fem/surface_instability.hpp"
 #include "theory/scaling.hpp"
 
 namespace {
@@ -71,12 +73,16 @@ int run(int argc, char** argv) {
   o.p_ref = pc;
   o.end_dp = end_dp * pc;
   std::FILE* out = csv.empty() ? nullptr : std::fopen(csv.c_str(), "w");
-  if (out) std::fprintf(out, "v,dp_over_pc,apex_z_mm,iterations,contact_depth_um\n");
+  if (out)
+    std::fprintf(
+        out,
+        "v,dp_over_pc,apex_z_mm,iterations,contact_depth_um,crease_ratio,crease_from_rim_mm\n");
   double V0 = body.cavity_volume(body.nodes());
   o.progress = [&](const axi::BranchPoint& p) {
     if (out) {
-      std::fprintf(out, "%.8g,%.8g,%.8g,%d,%.4g\n", p.volume / V0, p.dp / pc, 1e3 * p.apex_z,
-                   p.iterations, 1e6 * p.contact_depth);
+      std::fprintf(out, "%.8g,%.8g,%.8g,%d,%.4g,%.5g,%.4g\n", p.volume / V0, p.dp / pc,
+                   1e3 * p.apex_z, p.iterations, 1e6 * p.contact_depth, p.crease_ratio,
+                   1e3 * p.crease_from_rim);
     }
   };
   const auto t0 = std::chrono::steady_clock::now();
@@ -97,6 +103,12 @@ int run(int argc, char** argv) {
       "  last point V / V0 = {:.4f}, dp = {:.5f} p_Zoelly, {}stable under pressure control\n",
       b.points.back().volume / V0, b.points.back().dp / pc, b.stable ? "" : "not ");
   fmt::print("  {}\n", b.reached_end ? "reached the end volume" : b.stop_reason);
+  const auto biot = fem::biot_instability(body.material());
+  fmt::print(
+      "  the inner surface's crease measure at the last point: {:.4g} at {:.3g} mm from the rim "
+      "(an incompressible neo-Hookean surface creases from 2.4; this law's smooth surface "
+      "wrinkles from {:.4g}, Biot)\n",
+      b.points.back().crease_ratio, 1e3 * b.points.back().crease_from_rim, biot.ratio);
   return 0;
 }
 

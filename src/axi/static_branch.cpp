@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "axi/contact.hpp"
+#include "axi/surface_stretch.hpp"
 
 namespace snapjump::axi {
 namespace {
@@ -293,8 +294,14 @@ std::optional<int> Tracer::correct(State& s, const Arc& arc) {
 BranchPoint Tracer::point(const State& s, int iterations) {
   problem_.scatter(s.u, x_);
   const int apex = body_.apex();
-  return {s.v * V0_, s.q * o_.p_ref, x_.z[apex] - body_.nodes().z[apex], iterations,
-          o_.contacts ? problem_.contact_depth(x_) : 0.0};
+  const auto crease = largest_compressed_ratio(inner_surface_stretches(body_, x_));
+  return {s.v * V0_,
+          s.q * o_.p_ref,
+          x_.z[apex] - body_.nodes().z[apex],
+          iterations,
+          o_.contacts ? problem_.contact_depth(x_) : 0.0,
+          crease.ratio,
+          crease.from_rim};
 }
 
 // The extremum of dp among points[i - 1 .. i + 1] by a parabola in the arclength of (v, q).
