@@ -106,9 +106,10 @@ int run(int argc, char** argv) {
   const auto biot = fem::biot_instability(body.material());
   fmt::print(
       "  the inner surface's crease measure at the last point: {:.4g} at {:.3g} mm from the rim "
-      "(an incompressible neo-Hookean surface creases from 2.4; this law's smooth surface "
+      "(an incompressible neo-Hookean surface creases from {:g}; this law's smooth surface "
       "wrinkles from {:.4g}, Biot)\n",
-      b.points.back().crease_ratio, 1e3 * b.points.back().crease_from_rim, biot.ratio);
+      b.points.back().crease_ratio, 1e3 * b.points.back().crease_from_rim,
+      fem::kNeoHookeanCreaseRatio, biot.ratio);
   return 0;
 }
 

@@ -24,6 +24,7 @@
 #include "app/preparation_hints.hpp"
 #include "config/text.hpp"
 #include "config/units.hpp"
+#include "fem/surface_instability.hpp"
 #include "io/atomic_file.hpp"
 #include "io/folder_lock.hpp"
 #include "io/prediction_report.hpp"
@@ -33,6 +34,7 @@
 #include "measure/bounds_check.hpp"
 #include "measure/time_series.hpp"
 #include "plot/figures.hpp"
+#include "popper/material.hpp"
 #include "popper/popper.hpp"
 #include "popper/reverse_snap.hpp"
 #include "theory/scaling.hpp"
@@ -281,6 +283,37 @@ measure::Analysis write_results(const fs::path& dir, nlohmann::json& summary, co
   return analysis;
 }
 
+// The grounded shell's inner surface against the crease threshold of an incompressible
+// neo-Hookean solid and Biot's instability of the case's own law (fem/surface_instability.hpp),
+// in words and for summary.json.
+std::pair<std::string, nlohmann::json> surface_report(const config::Case& c,
+                                                      const popper::Preparation& prep) {
+  std::optional<double> biot;
+  try {
+    biot = fem::biot_instability(popper::body_material(c.material)).ratio;
+  } catch (const std::runtime_error&) {
+    // stable down to the scan's end: no instability to compare with
+  }
+  const double ratio = *prep.surface_ratio, crease = fem::kNeoHookeanCreaseRatio;
+  const bool past = ratio >= crease;
+  auto words = fmt::format(
+      "the inner surface is compressed along itself most {:.3g} mm from the rim, its principal "
+      "stretches {:.3g} to 1; an incompressible neo-Hookean surface creases from {:g} to 1",
+      1e3 * prep.surface_from_rim, ratio, crease);
+  if (biot) words += fmt::format(", this law's smooth surface wrinkles from {:.3g} (Biot)", *biot);
+  if (past) {
+    words +=
+        ": past it, so a shell of a nearly incompressible rubber creases there, while the "
+        "model's surface stays smooth (docs/axisymmetric.md, \"The crease at the clamp\")";
+  }
+  nlohmann::json j = {{"ratio", ratio},
+                      {"from_rim", prep.surface_from_rim},
+                      {"crease_ratio", crease},
+                      {"biot_ratio", biot ? nlohmann::json(*biot) : nlohmann::json(nullptr)},
+                      {"past_crease_threshold", past}};
+  return {words, j};
+}
+
 // A resume refused before anything was changed: the run stays as it was (not "failed").
 class ResumeRefused : public config::CaseError {
  public:
@@ -497,6 +530,11 @@ bool Run::prepare_and_release() {
     preparation_progress(phase, t, fraction);
   });
   fmt::print(out_, "  prepared    {}\n", prep.message);
+  std::optional<std::pair<std::string, nlohmann::json>> surface;
+  if (prep.surface_ratio) {
+    surface = surface_report(c_, prep);
+    fmt::print(out_, "  surface     {}\n", surface->first);
+  }
   const auto or_null = [](const std::optional<double>& p) {
     return p ? nlohmann::json(*p) : nlohmann::json(nullptr);
   };
@@ -508,6 +546,7 @@ bool Run::prepare_and_release() {
                              {"delta_p_j", pop_.delta_p_j()},
                              {"plate_force", prep.plate_force},
                              {"message", prep.message}};
+  if (surface) summary_["preparation"]["inner_surface"] = surface->second;
   if (!prep.held) {
     summary_["status"] =
         prep.inverted ? io::run_status::kSnappedBack : io::run_status::kDidNotInvert;

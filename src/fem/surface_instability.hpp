@@ -12,15 +12,19 @@
 // fixed; an incremental displacement exp(i k x1 + k q x2) in the (x1, x2) plane. The material's
 // instantaneous moduli (R. W. Ogden, Non-linear Elastic Deformations, 1984, Sec. 6.1) come from
 // the derivatives of its strain energy in the principal stretches (fem::first_piola_stress, the
-// second derivatives by central differences of it); incremental equilibrium gives two decaying exponents q, and the incremental
-// traction on the surface vanishes for some mode where the 2 x 2 determinant of the two
-// exponents' tractions does. That determinant is odd under swapping the exponents; over their
-// difference it is real, whether they are real or complex conjugates.
+// second derivatives by central differences of it); incremental equilibrium gives two decaying
+// exponents q, and the incremental traction on the surface vanishes for some mode where the 2 x 2
+// determinant of the two exponents' tractions does. That determinant is odd under swapping the
+// exponents; over their difference it is real, whether they are real or complex conjugates.
 #pragma once
 
 #include "fem/body.hpp"
 
 namespace snapjump::fem {
+
+// The ratio of the normal to the tangential stretch at which an incompressible neo-Hookean
+// surface creases (Hong, Zhao and Suo 2009, above).
+inline constexpr double kNeoHookeanCreaseRatio = 2.4;
 
 struct SurfaceInstability {
   double tangential = 0.0;  // the stretch along the surface at the instability

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "axi/static_branch.hpp"
+#include "axi/surface_stretch.hpp"
 #include "io/vtu.hpp"
 #include "popper/material.hpp"
 #include "popper/state_io.hpp"
@@ -64,6 +65,12 @@ nlohmann::json AxiShell::numerics_json() const {
           {"elements_through", s.through},
           {"dt", dynamics_.dt()},
           {"omega_max", omega_max_}};
+}
+
+std::optional<ShellModel::SurfaceCompression> AxiShell::inner_surface_compression() const {
+  const auto worst =
+      axi::largest_compressed_ratio(axi::inner_surface_stretches(body_, dynamics_.positions()));
+  return SurfaceCompression{worst.ratio, worst.from_rim};  // (1, NaN) where nothing is compressed
 }
 
 void AxiShell::start_held(double damping) {

@@ -43,6 +43,7 @@ class AxiShell final : public ShellModel, public ShellReport {
 
   [[nodiscard]] double kinetic_energy() const override { return dynamics_.kinetic_energy(); }
   void check_folds() const override { body_.check_folds(dynamics_.positions()); }
+  [[nodiscard]] std::optional<SurfaceCompression> inner_surface_compression() const override;
   [[nodiscard]] double strain_energy() const override {
     return body_.strain_energy(dynamics_.positions());
   }

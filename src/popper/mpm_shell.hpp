@@ -59,6 +59,9 @@ class MpmShell final : public ShellModel, public ShellReport {
   [[nodiscard]] double kinetic_energy() const override;
   [[nodiscard]] double strain_energy() const override;
   void check_folds() const override;
+  [[nodiscard]] std::optional<SurfaceCompression> inner_surface_compression() const override {
+    return std::nullopt;
+  }
   [[nodiscard]] double potential_energy(double g) const override;
   [[nodiscard]] double cavity_volume() const override;
   [[nodiscard]] double apex_z() const override;

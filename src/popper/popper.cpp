@@ -259,6 +259,10 @@ Preparation Popper::prepare(const Progress& progress) {
   if (!suction) return prep;
   if (!set_delta_p_j(prep, progress, pc, *suction)) return prep;
   if (!ground(prep, progress, pc)) return prep;
+  if (const auto s = model_->inner_surface_compression()) {
+    prep.surface_ratio = s->ratio;
+    prep.surface_from_rim = s->from_rim;
+  }
   prep.message +=
       fmt::format(", {}, grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",
                   held_words(pc), 1e3 * model_->time(), prep.plate_force, case_.popper.net_weight);

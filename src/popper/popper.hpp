@@ -122,7 +122,13 @@ struct Preparation {
   // lowest suction that holds the fully inverted shell [Pa].
   std::optional<double> reverse_pressure, hold_pressure;
   double plate_force = 0.0;  // after grounding, mean plate force over the settling's end [N]
-  std::string message;       // what happened, in words
+  // The grounded shell's inner surface where it is compressed along itself most
+  // (ShellModel::inner_surface_compression): the ratio of its principal stretches, and the
+  // distance from the rim face [m] (NaN where nothing is compressed); nothing where the model
+  // does not resolve it (3D).
+  std::optional<double> surface_ratio;
+  double surface_from_rim = std::numeric_limits<double>::quiet_NaN();
+  std::string message;  // what happened, in words
 };
 
 // The quasi-static phases' settings (only their end states matter, docs/popper.md; so these

@@ -3,6 +3,8 @@
 #include <stdexcept>
 
 #include "config/case.hpp"
+#include "fem/surface_instability.hpp"
+#include "popper/material.hpp"
 #include "popper/popper.hpp"
 #include "theory/scaling.hpp"
 
@@ -140,6 +142,26 @@ TEST(Protocol, ACapThatSnapsBackAsItIsGroundedIsNotHeld) {
       << prep.message;
   EXPECT_LT(low.model().apex_z(), 0.03 * c.shell.R);
   EXPECT_THROW(low.release(), std::logic_error);
+}
+
+TEST(Protocol, TheGroundedShellsInnerSurfaceIsMeasuredWhereTheModelResolvesIt) {
+  // The axisymmetric popper's fold next to the clamp compresses its inner surface most there
+  // (docs/axisymmetric.md, "The crease at the clamp"), less than Biot's instability of its law,
+  // past which no smooth surface is stable; the 3D mesh (one element through h) reports nothing.
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = config::Resolution::Coarse;
+  Popper axi(c, resolve_numerics(c));
+  const auto prep = axi.prepare();
+  ASSERT_TRUE(prep.held) << prep.message;
+  ASSERT_TRUE(prep.surface_ratio.has_value());
+  EXPECT_GT(*prep.surface_ratio, 1.5);
+  EXPECT_LT(*prep.surface_ratio, fem::biot_instability(body_material(c.material)).ratio);
+  const double meridian = (c.shell.R - 0.5 * c.shell.h) * c.shell.phi;
+  EXPECT_LT(prep.surface_from_rim, 0.15 * meridian);
+  c.numerics.model = config::Model::ThreeD;
+  Popper three_d(c, resolve_numerics(c));
+  EXPECT_FALSE(three_d.model().inner_surface_compression().has_value());
 }
 
 TEST(Protocol, SettingsThatCannotRunAreRefused) {
