@@ -301,7 +301,13 @@ std::pair<std::string, nlohmann::json> surface_report(const config::Case& c,
       "stretches {:.3g} to 1; an incompressible neo-Hookean surface creases from {:g} to 1",
       1e3 * prep.surface_from_rim, ratio, crease);
   if (biot) words += fmt::format(", this law's smooth surface wrinkles from {:.3g} (Biot)", *biot);
-  if (past) {
+  const bool past_biot = biot && ratio > *biot;
+  if (past_biot) {
+    words +=
+        ": past both, so no smooth surface of this law is stable there, and the model's is "
+        "either creased (its faces closed) or held smooth by its mesh alone (docs/axisymmetric.md, "
+        "\"The crease at the clamp\")";
+  } else if (past) {
     words +=
         ": past it, so a shell of a nearly incompressible rubber creases there, while the "
         "model's surface stays smooth (docs/axisymmetric.md, \"The crease at the clamp\")";
@@ -310,7 +316,8 @@ std::pair<std::string, nlohmann::json> surface_report(const config::Case& c,
                       {"from_rim", prep.surface_from_rim},
                       {"crease_ratio", crease},
                       {"biot_ratio", biot ? nlohmann::json(*biot) : nlohmann::json(nullptr)},
-                      {"past_crease_threshold", past}};
+                      {"past_crease_threshold", past},
+                      {"past_biot", past_biot}};
   return {words, j};
 }
 
