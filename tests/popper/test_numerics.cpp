@@ -11,6 +11,14 @@
 namespace snapjump::popper {
 namespace {
 
+// The default popper on the cheap axisymmetric coarse preset.
+config::Case coarse_axisymmetric_default() {
+  auto c = config::default_case();
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.resolution = config::Resolution::Coarse;
+  return c;
+}
+
 // Each model keeps its own integration of the bulk energy unless the case names one: the 3D
 // tetrahedra the paper's full rule, the axisymmetric elements their reduced one.
 TEST(Numerics, EachModelHasItsOwnBulkIntegrationUnlessTheCaseSetsOne) {
@@ -109,9 +117,7 @@ TEST(SnapOnset, FirstSampleFasterThanTheWindowsRate) {
 // The buckling phase alone (the protocol's one buckling driver): the cheap axisymmetric coarse
 // popper inverts, its buckling pressure is read, and a popper is prepared only once.
 TEST(Protocol, BucklePhaseAloneThenNoSecondPreparation) {
-  auto c = config::default_case();
-  c.numerics.model = config::Model::Axisymmetric;
-  c.numerics.resolution = config::Resolution::Coarse;
+  auto c = coarse_axisymmetric_default();
   Popper pop(c, resolve_numerics(c));
   const auto prep = pop.buckle();
   EXPECT_TRUE(prep.inverted) << prep.message;
@@ -130,9 +136,7 @@ TEST(Protocol, BucklePhaseAloneThenNoSecondPreparation) {
 // not a release whose snap comes at t = 0. (At the protocol's 0.5 p_c, above p_hold = 0.26 p_c,
 // the same cap is held: ExamplePreparation.)
 TEST(Protocol, ACapThatSnapsBackAsItIsGroundedIsNotHeld) {
-  auto c = config::default_case();
-  c.numerics.model = config::Model::Axisymmetric;
-  c.numerics.resolution = config::Resolution::Coarse;
+  auto c = coarse_axisymmetric_default();
   c.protocol.delta_p_j_over_pc = 0.1;
   Popper low(c, resolve_numerics(c));
   const auto prep = low.prepare();
@@ -148,9 +152,7 @@ TEST(Protocol, TheGroundedShellsInnerSurfaceIsMeasuredWhereTheModelResolvesIt) {
   // The axisymmetric popper's fold next to the clamp compresses its inner surface most there
   // (docs/axisymmetric.md, "The crease at the clamp"), less than Biot's instability of its law,
   // past which no smooth surface is stable; the 3D mesh (one element through h) reports nothing.
-  auto c = config::default_case();
-  c.numerics.model = config::Model::Axisymmetric;
-  c.numerics.resolution = config::Resolution::Coarse;
+  auto c = coarse_axisymmetric_default();
   Popper axi(c, resolve_numerics(c));
   const auto prep = axi.prepare();
   ASSERT_TRUE(prep.held) << prep.message;
@@ -165,9 +167,7 @@ TEST(Protocol, TheGroundedShellsInnerSurfaceIsMeasuredWhereTheModelResolvesIt) {
 }
 
 TEST(Protocol, SettingsThatCannotRunAreRefused) {
-  auto c = config::default_case();
-  c.numerics.model = config::Model::Axisymmetric;
-  c.numerics.resolution = config::Resolution::Coarse;
+  auto c = coarse_axisymmetric_default();
   const auto n = resolve_numerics(c);
   for (const auto broken : {+[](PreparationSettings& s) { s.ramp = 0.0; },
                             +[](PreparationSettings& s) { s.buckle_factor = -1.0; },
@@ -190,9 +190,7 @@ TEST(Protocol, SettingsThatCannotRunAreRefused) {
 
 // The buckling ramp: one even ramp by default, or a fast first leg then an even one.
 TEST(Protocol, BucklingRampWithAndWithoutAFastLeg) {
-  auto c = config::default_case();
-  c.numerics.model = config::Model::Axisymmetric;
-  c.numerics.resolution = config::Resolution::Coarse;
+  auto c = coarse_axisymmetric_default();
   const auto n = resolve_numerics(c);
   const double pc = 1000.0;
   const Popper even(c, n);
