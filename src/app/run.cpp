@@ -309,8 +309,9 @@ std::pair<std::string, nlohmann::json> surface_report(const config::Case& c,
         "\"The crease at the clamp\")";
   } else if (past) {
     words +=
-        ": past it, so a shell of a nearly incompressible rubber creases there, while the "
-        "model's surface stays smooth (docs/axisymmetric.md, \"The crease at the clamp\")";
+        ": past the crease threshold and short of Biot's, so a shell of a nearly incompressible "
+        "rubber creases there, while the model's surface stays smooth (docs/axisymmetric.md, \"The "
+        "crease at the clamp\")";
   }
   nlohmann::json j = {{"ratio", ratio},
                       {"from_rim", prep.surface_from_rim},

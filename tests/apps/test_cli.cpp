@@ -647,6 +647,29 @@ TEST(Cli, ARunThatFailsAfterItsFolderIsMadeSaysSoInItsSummary) {
   EXPECT_NE(text.str().find("\"case\""), std::string::npos);  // what it held is kept
 }
 
+TEST(Cli, TheGroundedShellsInnerSurfaceIsPrintedAndKeptInTheSummary) {
+  // The coarse axisymmetric default popper's inner surface, 2.49 to 1 about 1.9 mm from the rim:
+  // past the incompressible neo-Hookean crease threshold (2.4), short of its law's Biot
+  // instability (2.95 at nu = 0.45); both thresholds come from src/fem/surface_instability.
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_inner_surface";
+  std::filesystem::remove_all(dir);
+  const auto r = run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--end-time",
+                      "1ms", "--output", dir.string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("past the crease threshold and short of Biot's"), std::string::npos)
+      << r.out;
+  std::ifstream in(dir / "summary.json");
+  const auto s = nlohmann::json::parse(in)["preparation"]["inner_surface"];
+  const double ratio = s["ratio"].get<double>(), biot = s["biot_ratio"].get<double>();
+  EXPECT_GT(ratio, s["crease_ratio"].get<double>());
+  EXPECT_LT(ratio, biot);
+  EXPECT_NEAR(biot, 2.954, 0.005);
+  EXPECT_TRUE(s["past_crease_threshold"].get<bool>());
+  EXPECT_FALSE(s["past_biot"].get<bool>());
+  EXPECT_GT(s["from_rim"].get<double>(), 0.0);
+  EXPECT_LT(s["from_rim"].get<double>(), 5e-3);
+}
+
 TEST(Cli, RunSaysWhereALinkedOutputFolderReallyIs) {
   const auto base = std::filesystem::temp_directory_path() / "snapjump_cli_linked_output";
   std::filesystem::remove_all(base);
