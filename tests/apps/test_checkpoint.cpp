@@ -15,21 +15,17 @@
 #include "app/checkpoint.hpp"
 #include "io/atomic_file.hpp"
 #include "io/vtu.hpp"
+#include "support/cases.hpp"
 #include "support/hostile_text.hpp"
 
 namespace snapjump::app {
 namespace {
 
-config::Case axi_case() {
-  auto c = config::default_case();
-  c.numerics.model = config::Model::Axisymmetric;
-  c.numerics.resolution = config::Resolution::Coarse;
-  return c;
-}
+using test_support::coarse_axisymmetric_default;
 
 // A released popper a few steps on, and a loop state with two snapshots.
 struct Fixture {
-  config::Case c = axi_case();
+  config::Case c = coarse_axisymmetric_default();
   popper::Numerics n = popper::resolve_numerics(c);
   popper::Popper pop{c, n};
   LoopState loop;
@@ -46,7 +42,7 @@ struct Fixture {
 };
 
 std::string error_of(const std::string& bytes) {
-  const auto c = axi_case();
+  const auto c = coarse_axisymmetric_default();
   popper::Popper fresh(c, popper::resolve_numerics(c));
   try {
     (void)decode_checkpoint(bytes, fresh, "checkpoint.bin");

@@ -6,18 +6,13 @@
 #include "fem/surface_instability.hpp"
 #include "popper/material.hpp"
 #include "popper/popper.hpp"
+#include "support/cases.hpp"
 #include "theory/scaling.hpp"
 
 namespace snapjump::popper {
 namespace {
 
-// The default popper on the cheap axisymmetric coarse preset.
-config::Case coarse_axisymmetric_default() {
-  auto c = config::default_case();
-  c.numerics.model = config::Model::Axisymmetric;
-  c.numerics.resolution = config::Resolution::Coarse;
-  return c;
-}
+using test_support::coarse_axisymmetric_default;
 
 // Each model keeps its own integration of the bulk energy unless the case names one: the 3D
 // tetrahedra the paper's full rule, the axisymmetric elements their reduced one.
