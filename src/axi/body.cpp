@@ -60,7 +60,8 @@ int elements_along(double R, double h, double phi, int through) {
 Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), material_(material) {
   if (!(spec.R > 0.0 && spec.h > 0.0 && spec.h < spec.R && spec.phi > 0.0 &&
         spec.phi < std::numbers::pi && spec.through >= 1 && spec.along >= 1 &&
-        spec.rim_grading >= 1.0 && spec.rim_grading <= 100.0)) {
+        spec.rim_grading >= 1.0 && spec.rim_grading <= 100.0 && spec.crease_fan_from_rim >= 0.0 &&
+        std::isfinite(spec.crease_fan_from_rim))) {
     throw std::invalid_argument(
         fmt::format("unusable axisymmetric mesh: R = {} m, h = {} m, phi = {} rad, {} x {} "
                     "elements, rim grading {} (1 to 100)",
@@ -71,15 +72,16 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   const int ni = 2 * spec.along + 1, nj = 2 * spec.through + 1;
   const auto id = [nj](int i, int j) { return i * nj + j; };
   const auto corners = corner_angles(spec);
+  std::vector<double> theta(ni);
   for (int i = 0; i < ni; ++i) {
     // Uniform: the lattice's own spacing (bit for bit the mesh without grading).
-    const double theta = spec.rim_grading == 1.0 ? spec.phi * i / (ni - 1)
-                         : i % 2 == 0            ? corners[i / 2]
-                                                 : 0.5 * (corners[i / 2] + corners[i / 2 + 1]);
+    theta[i] = spec.rim_grading == 1.0 ? spec.phi * i / (ni - 1)
+               : i % 2 == 0            ? corners[i / 2]
+                                       : 0.5 * (corners[i / 2] + corners[i / 2 + 1]);
     for (int j = 0; j < nj; ++j) {
       const double s = spec.R - 0.5 * spec.h + spec.h * j / (nj - 1);
-      nodes_.r.push_back(i == 0 ? 0.0 : s * std::sin(theta));
-      nodes_.z.push_back(-s * std::cos(theta));
+      nodes_.r.push_back(i == 0 ? 0.0 : s * std::sin(theta[i]));
+      nodes_.z.push_back(-s * std::cos(theta[i]));
     }
   }
   for (int j = 0; j < nj; ++j) {
@@ -100,6 +102,7 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
       elements_.push_back(el);
     }
   }
+  if (spec.crease_fan_from_rim > 0.0) add_crease_fan(theta);
 
   // Quadrature data, and the consistent mass's diagonal for the lumping.
   mass_.assign(nodes_.size(), 0.0);
@@ -162,6 +165,121 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   build(full_, 3, true);
   build(reduced_, spec.reduced_bulk ? 2 : 3, false);
   for (double m : mass_) total_mass_ += m;
+}
+
+// The fan replaces the 2 x 2 block of elements whose inner-surface edge's middle corner is the
+// root P: in the block's lattice coordinates (u along, v through, 0..4 each) its corners are
+// A (0, 0), P (2, 0), B (4, 0), C (0, 2), D (4, 2), E (0, 4), M (2, 4), F (4, 4), and its
+// five elements are A P O1 C, P O2 M O1, P B D O2, C O1 M E and O2 D F M, with two new
+// corners O1, O2 at v = 1.6 on rays from P that split the angle between PD and the normal
+// (and its mirror): every element convex whatever the block's aspect, P's three corners about
+// 60 degrees on square elements. The block's boundary, its edges' middle nodes included, is
+// the lattice's, so the fan conforms to the elements around it.
+void Body::add_crease_fan(const std::vector<double>& theta) {
+  const int ni = 2 * spec_.along + 1, nj = 2 * spec_.through + 1;
+  const double inner_radius = spec_.R - 0.5 * spec_.h;
+  int root = -1;  // the element index e_c along whose first corner is P
+  double best = std::numeric_limits<double>::infinity();
+  for (int e = 1; e < spec_.along; ++e) {
+    const double d =
+        std::abs(inner_radius * (spec_.phi - theta[2 * e]) - spec_.crease_fan_from_rim);
+    if (d < best) best = d, root = e;
+  }
+  if (spec_.through < 2 || root < 0) {
+    throw std::invalid_argument(fmt::format(
+        "a crease fan needs two or more elements through h and two along ({} x {} here)",
+        spec_.along, spec_.through));
+  }
+  const int i0 = 2 * (root - 1);
+  const auto lattice_point = [&](double u, double v) {
+    const double i = i0 + u;
+    const int lo = std::min(static_cast<int>(std::floor(i)), ni - 2);
+    const double t = theta[lo] + (i - lo) * (theta[lo + 1] - theta[lo]);
+    const double s = spec_.R - 0.5 * spec_.h + spec_.h * v / (nj - 1);
+    return std::pair{s * std::sin(t), -s * std::cos(t)};
+  };
+  // The rays from P: the lattice units' lengths along and through at P.
+  const double along_unit = spec_.R * (theta[i0 + 4] - theta[i0]) / 4.0;
+  const double through_unit = spec_.h / (nj - 1);
+  const double pd = std::atan2(through_unit, along_unit);  // PD's angle from the surface
+  const double ray = 0.5 * (pd + 0.5 * std::numbers::pi);
+  const double du = 1.6 * through_unit / std::tan(ray) / along_unit;
+  using UV = std::array<double, 2>;
+  const UV A{0, 0}, P{2, 0}, B{4, 0}, C{0, 2}, D{4, 2}, E{0, 4}, M{2, 4}, F{4, 4};
+  const UV O1{2 - du, 1.6}, O2{2 + du, 1.6};
+  // Corners in the element's order (a, b) = (0, 0), (2, 0), (2, 2), (0, 2).
+  const std::array<std::array<UV, 4>, 5> quads{
+      {{A, P, O1, C}, {P, O2, M, O1}, {P, B, D, O2}, {C, O1, M, E}, {O2, D, F, M}}};
+  std::vector<std::pair<UV, int>> created;
+  const auto node_at = [&](const UV& uv) {
+    const bool on_lattice = uv[0] == std::round(uv[0]) && uv[1] == std::round(uv[1]);
+    const bool on_boundary = uv[0] == 0 || uv[0] == 4 || uv[1] == 0 || uv[1] == 4;
+    if (on_lattice && on_boundary) {
+      return (i0 + static_cast<int>(uv[0])) * nj + static_cast<int>(uv[1]);
+    }
+    for (const auto& [at, id] : created) {
+      if (std::abs(at[0] - uv[0]) < 1e-9 && std::abs(at[1] - uv[1]) < 1e-9) return id;
+    }
+    const auto [r, z] = lattice_point(uv[0], uv[1]);
+    nodes_.r.push_back(r);
+    nodes_.z.push_back(z);
+    created.emplace_back(uv, static_cast<int>(nodes_.r.size()) - 1);
+    return created.back().second;
+  };
+  std::array<std::array<int, 9>, 5> fan{};
+  for (int q = 0; q < 5; ++q) {
+    const auto& c = quads[q];
+    for (int a = 0; a < 3; ++a) {
+      for (int b = 0; b < 3; ++b) {
+        const double x = 0.5 * a, y = 0.5 * b;  // bilinear weights over the corners
+        UV uv{};
+        for (int k = 0; k < 2; ++k) {
+          uv[k] = (1 - x) * (1 - y) * c[0][k] + x * (1 - y) * c[1][k] + x * y * c[2][k] +
+                  (1 - x) * y * c[3][k];
+        }
+        fan[q][3 * a + b] = node_at(uv);
+      }
+    }
+  }
+  // The inner-surface elements keep their places (element e * through is e's inner one).
+  const int T = spec_.through;
+  elements_[static_cast<std::size_t>((root - 1) * T)] = fan[0];
+  elements_[static_cast<std::size_t>((root - 1) * T + 1)] = fan[3];
+  elements_[static_cast<std::size_t>(root * T)] = fan[2];
+  elements_[static_cast<std::size_t>(root * T + 1)] = fan[4];
+  elements_.push_back(fan[1]);
+  crease_root_ = (i0 + 2) * nj;
+  drop_unused_nodes();
+}
+
+double Body::crease_root_from_rim() const {
+  if (crease_root_ < 0) return std::numeric_limits<double>::quiet_NaN();
+  const double theta = std::atan2(nodes_.r[crease_root_], -nodes_.z[crease_root_]);
+  return (spec_.R - 0.5 * spec_.h) * (spec_.phi - theta);
+}
+
+// Renumbers the nodes that some element holds, in their order, and drops the rest (the lattice's
+// nodes inside a fan's block).
+void Body::drop_unused_nodes() {
+  std::vector<int> index(nodes_.size(), -1);
+  for (const auto& el : elements_) {
+    for (int m : el) index[m] = 0;
+  }
+  Points kept;
+  for (std::size_t a = 0; a < index.size(); ++a) {
+    if (index[a] < 0) continue;
+    index[a] = static_cast<int>(kept.r.size());
+    kept.r.push_back(nodes_.r[a]);
+    kept.z.push_back(nodes_.z[a]);
+  }
+  nodes_ = std::move(kept);
+  for (auto& el : elements_) {
+    for (int& m : el) m = index[m];
+  }
+  for (auto* set : {&axis_, &rim_, &outer_, &inner_}) {
+    for (int& a : *set) a = index[a];
+  }
+  if (crease_root_ >= 0) crease_root_ = index[crease_root_];
 }
 
 template <bool kEnergy>

@@ -37,6 +37,14 @@ struct MeshSpec {
   // The bulk part at 2 x 2 Gauss points (true) or at the full 3 x 3 rule with the rest (false:
   // the 3D model's default integration, which locks at nu near 1/2).
   bool reduced_bulk = true;
+  // A crease's root [m]: the inner surface's corner node nearest this arc length from the rim
+  // (on the reference inner surface) is given a fan of three elements, where the two
+  // structured elements at a surface node leave it two. A closed crease turns the surface
+  // through 180 degrees at its root, so the material there opens from a half-plane to a whole
+  // one: two elements' corners must each open to 180 degrees (det F = 0), three to about 120.
+  // 0: no fan. Needs two or more elements through h; the node lies between the first element
+  // and the last.
+  double crease_fan_from_rim = 0.0;
 };
 
 // Meridian positions (structure of arrays).
@@ -69,6 +77,10 @@ class Body {
   [[nodiscard]] const std::vector<int>& outer() const { return outer_; }
   [[nodiscard]] const std::vector<int>& inner() const { return inner_; }
   [[nodiscard]] int apex() const { return outer_.front(); }
+  // The fan's root node (MeshSpec::crease_fan_from_rim), or -1 without one.
+  [[nodiscard]] int crease_root() const { return crease_root_; }
+  // Its arc length from the rim on the reference inner surface [m]; NaN without one.
+  [[nodiscard]] double crease_root_from_rim() const;
 
   // f = -dW/dx at positions x (overwrites f). Throws fem::InvertedElement.
   void internal_forces(const Points& x, Points& f) const;
@@ -118,6 +130,10 @@ class Body {
   double total_mass_ = 0.0;
   double volume_ = 0.0;
   std::vector<int> axis_, rim_, outer_, inner_;
+  int crease_root_ = -1;
+
+  void add_crease_fan(const std::vector<double>& theta);
+  void drop_unused_nodes();
 };
 
 template <typename Visit>

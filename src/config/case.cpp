@@ -91,6 +91,10 @@ constexpr KeySpec kKeys[] = {
     {"numerics", "contact_band", "contact-band", Dimension::Length, false, std::nullopt, "",
      "18 mm", "3D: arc length from the apex over which numerics.contact_element_size holds",
      nullptr, +[](Case& c) { return &c.numerics.contact_band; }},
+    {"numerics", "crease_fan", "crease-fan", Dimension::Length, false, std::nullopt, "", "1.5 mm",
+     "axisymmetric: arc length from the rim along the inner surface of a crease's root, given a "
+     "fan of three elements so that a closed crease folds none (none when absent)",
+     nullptr, +[](Case& c) { return &c.numerics.crease_fan; }},
     {"numerics", "time_step_factor", "time-step-factor", Dimension::Dimensionless, false,
      std::nullopt, "", "0.5",
      "3D elastic time step factor: dt = factor * smallest node spacing / p-wave speed (0.5 when "
@@ -480,6 +484,13 @@ Case build(const Reader& r, Case c) {
   graded_pair("contact_element_size", c.numerics.contact_element_size, "contact_band",
               c.numerics.contact_band);
   if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
+  if (c.numerics.crease_fan) {
+    positive("numerics", "crease_fan", *c.numerics.crease_fan);
+    check(c.numerics.model == Model::Axisymmetric,
+          fmt::format("{} places a crease's root in the axisymmetric mesh: give it with "
+                      "numerics.model = \"axisymmetric\"",
+                      r.where(spec("numerics", "crease_fan"))));
+  }
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
   if (c.numerics.time_step_factor) {
     positive("numerics", "time_step_factor", *c.numerics.time_step_factor);

@@ -135,6 +135,9 @@ struct Numerics {
   // growing from there to element_size. Each pair is given whole or not at all.
   std::optional<double> rim_element_size, rim_band;          // [m]
   std::optional<double> contact_element_size, contact_band;  // [m]
+  // Axisymmetric: the inner surface's node nearest this arc length from the rim is a crease's
+  // root, with a fan of three elements (axi::MeshSpec::crease_fan_from_rim); none when absent.
+  std::optional<double> crease_fan;    // [m]
   std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)
   // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
   // 1, fine 2; axisymmetric: 2, 4, 8).

@@ -26,7 +26,8 @@ axi::Body make_body(const config::Case& c, const Numerics& n) {
                                  .phi = c.shell.phi,
                                  .through = n.axi_through,
                                  .along = n.axi_along,
-                                 .reduced_bulk = n.reduced_bulk},
+                                 .reduced_bulk = n.reduced_bulk,
+                                 .crease_fan_from_rim = n.axi_crease_fan},
                    body_material(c.material));
 }
 
@@ -44,7 +45,7 @@ AxiShell::AxiShell(const config::Case& c, const Numerics& n, std::function<doubl
 
 std::string AxiShell::describe() const {
   const auto& s = body_.spec();
-  return fmt::format(
+  std::string text = fmt::format(
       "  model       axisymmetric (9-node elements on the meridian section, the plate exact on "
       "the nodes)\n  mesh        {} x {} elements (along the meridian x through h), {} nodes; "
       "element {:.3g} mm along, {:.3g} mm through\n  bulk energy {}\n  time step   {:.3g} us ({} "
@@ -53,18 +54,28 @@ std::string AxiShell::describe() const {
       s.reduced_bulk ? "at 2 x 2 Gauss points, the rest at 3 x 3 (selective, free of locking)"
                      : "at 3 x 3 Gauss points with the rest (numerics.bulk_integration = \"full\")",
       1e6 * dynamics_.dt(), kAxiStabilityFraction, omega_max_);
+  if (body_.crease_root() >= 0) {
+    text += fmt::format(
+        "  crease fan  a crease's root at the inner surface's node {:.3g} mm from the rim, three "
+        "elements around it (numerics.crease_fan)\n",
+        1e3 * body_.crease_root_from_rim());
+  }
+  return text;
 }
 
 nlohmann::json AxiShell::numerics_json() const {
   const auto& s = body_.spec();
-  return {{"model", "axisymmetric"},
-          {"bulk_integration", s.reduced_bulk ? "reduced" : "full"},
-          {"elements", body_.num_elements()},
-          {"nodes", body_.num_nodes()},
-          {"elements_along", s.along},
-          {"elements_through", s.through},
-          {"dt", dynamics_.dt()},
-          {"omega_max", omega_max_}};
+  return {
+      {"model", "axisymmetric"},
+      {"bulk_integration", s.reduced_bulk ? "reduced" : "full"},
+      {"elements", body_.num_elements()},
+      {"nodes", body_.num_nodes()},
+      {"elements_along", s.along},
+      {"elements_through", s.through},
+      {"crease_fan_from_rim",
+       body_.crease_root() < 0 ? nlohmann::json() : nlohmann::json(body_.crease_root_from_rim())},
+      {"dt", dynamics_.dt()},
+      {"omega_max", omega_max_}};
 }
 
 std::optional<ShellModel::SurfaceCompression> AxiShell::inner_surface_compression() const {

@@ -45,6 +45,7 @@ Numerics resolve_numerics(const config::Case& c) {
           ? std::max(
                 2, static_cast<int>(std::ceil(c.shell.R * c.shell.phi / *c.numerics.element_size)))
           : axi::elements_along(c.shell.R, c.shell.h, c.shell.phi, n.axi_through);
+  n.axi_crease_fan = c.numerics.crease_fan.value_or(0.0);
   // The plate acts on a particle whose stencil holds a plate node, i.e. from up to 1.5 cells
   // away, and a shell pressed on it stands a fraction of a cell off (docs/validation.md,
   // "Standoff"): the cell is a fraction of the thickness h, which sets the scale of the

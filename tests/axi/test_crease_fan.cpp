@@ -1,0 +1,152 @@
+// The crease fan (axi::MeshSpec::crease_fan_from_rim): the same solid of revolution as the
+// structured mesh, elements that pass the patch test, three elements at the root, and a closed
+// form of a closing crease (the angle about the root scaled, det F = the scale everywhere) that
+// the fan holds without a fold where the structured mesh folds.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "axi/body.hpp"
+#include "fem/fold_check.hpp"
+
+namespace snapjump::axi {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kR = 0.025, kH = 0.002, kE = 1.2e6, kRho = 1160.0;
+const double kPhi = 80.0 * kPi / 180.0;
+
+MeshSpec spec(double fan, int through = 4, int along = 70) {
+  MeshSpec s{kR, kH, kPhi, through, along};
+  s.crease_fan_from_rim = fan;
+  return s;
+}
+
+Body body(const MeshSpec& s) { return Body(s, fem::Material::from_young(kE, 0.45, kRho)); }
+
+TEST(CreaseFan, TheSolidAndItsSurfacesAreTheStructuredMeshs) {
+  const auto plain = body(spec(0.0));
+  const auto fan = body(spec(1.5e-3));
+  ASSERT_GE(fan.crease_root(), 0);
+  EXPECT_EQ(plain.crease_root(), -1);
+  // The node nearest 1.5 mm of 0.4986 mm elements: 3 elements, 1.496 mm.
+  EXPECT_NEAR(fan.crease_root_from_rim(), 3 * (kR - 0.5 * kH) * kPhi / 70, 1e-12);
+  EXPECT_TRUE(std::isnan(plain.crease_root_from_rim()));
+  EXPECT_EQ(fan.num_elements(), plain.num_elements() + 1);
+  // Nine lattice nodes inside the block dropped; two corners, six inner edges' middles and five
+  // centres added.
+  EXPECT_EQ(fan.num_nodes(), plain.num_nodes() - 9 + 2 + 6 + 5);
+  EXPECT_NEAR(fan.reference_volume() / plain.reference_volume(), 1.0, 1e-12);
+  EXPECT_NEAR(fan.total_mass() / plain.total_mass(), 1.0, 1e-12);
+  EXPECT_NEAR(fan.cavity_volume(fan.nodes()) / plain.cavity_volume(plain.nodes()), 1.0, 1e-14);
+  for (double m : fan.mass()) EXPECT_GT(m, 0.0);
+  // The node sets hold the same places.
+  for (const auto set : {&Body::axis, &Body::rim, &Body::outer, &Body::inner}) {
+    ASSERT_EQ((fan.*set)().size(), (plain.*set)().size());
+    for (std::size_t k = 0; k < (fan.*set)().size(); ++k) {
+      EXPECT_EQ(fan.nodes().r[(fan.*set)()[k]], plain.nodes().r[(plain.*set)()[k]]);
+      EXPECT_EQ(fan.nodes().z[(fan.*set)()[k]], plain.nodes().z[(plain.*set)()[k]]);
+    }
+  }
+  int at_root = 0;
+  for (const auto& el : fan.elements()) {
+    at_root += static_cast<int>(std::count(el.begin(), el.end(), fan.crease_root()));
+  }
+  EXPECT_EQ(at_root, 3);
+  EXPECT_NO_THROW(fan.check_folds(fan.nodes()));
+}
+
+// A uniform dilatation's stress is uniform and isotropic, in equilibrium without body forces, so
+// no node inside the body carries a force; the full 3 x 3 rule integrates it exactly on any
+// 9-node quadrilateral. Flat, square and tall elements give the fan three different shapes.
+TEST(CreaseFan, ItsElementsPassThePatchTest) {
+  for (const int along : {35, 70, 140}) {
+    SCOPED_TRACE(along);
+    auto s = spec(1.5e-3, 4, along);
+    s.reduced_bulk = false;
+    const auto b = body(s);
+    std::vector<char> boundary(b.num_nodes(), 0);
+    for (const auto* set : {&b.axis(), &b.rim(), &b.outer(), &b.inner()}) {
+      for (int a : *set) boundary[a] = 1;
+    }
+    auto x = b.nodes();
+    for (std::size_t a = 0; a < x.size(); ++a) {
+      x.r[a] *= 1.01;
+      x.z[a] *= 1.01;
+    }
+    Points f;
+    b.internal_forces(x, f);
+    double largest = 0.0, inside = 0.0;
+    for (std::size_t a = 0; a < f.size(); ++a) {
+      const double m = std::hypot(f.r[a], f.z[a]);
+      largest = std::max(largest, m);
+      if (!boundary[a]) inside = std::max(inside, m);
+    }
+    EXPECT_LT(inside, 1e-9 * largest);
+  }
+}
+
+// The closing crease as a closed form: about the root P, in its tangent (along the meridian)
+// and normal (into the shell) frame, the polar angle theta in [0, pi] of the material goes to
+// pi/2 + k(rho) (theta - pi/2), k = `closing` within `r1` of P, 1 beyond `r2`, linear between.
+// Its meridian det F is k(rho) > 0 everywhere, so a fold found is the mesh's; k = 2 closes the
+// crease (the surface turned through 180 degrees at P).
+Points close_crease(const Body& b, int root, double closing, double r1, double r2) {
+  const auto& X = b.nodes();
+  const double px = X.r[root], pz = X.z[root];
+  const double angle = std::atan2(px, -pz);  // the root's polar angle about the centre
+  const double tr = std::cos(angle), tz = std::sin(angle);   // along the meridian, to the rim
+  const double nr = std::sin(angle), nz = -std::cos(angle);  // outwards, into the shell
+  auto x = X;
+  for (std::size_t a = 0; a < x.size(); ++a) {
+    const double dr = X.r[a] - px, dz = X.z[a] - pz;
+    const double u = dr * tr + dz * tz, v = dr * nr + dz * nz;
+    const double rho = std::hypot(u, v);
+    if (rho >= r2 || rho == 0.0) continue;
+    const double k = rho <= r1 ? closing : closing + (1.0 - closing) * (rho - r1) / (r2 - r1);
+    // The inner surface curves away from its tangent at P: its points lie just outside
+    // [0, pi], and the angle is taken on the far side of the cavity's normal -n.
+    double theta = std::atan2(v, u);
+    if (theta < -0.5 * kPi) theta += 2.0 * kPi;
+    const double th = 0.5 * kPi + k * (theta - 0.5 * kPi);
+    const double u2 = rho * std::cos(th), v2 = rho * std::sin(th);
+    x.r[a] = px + u2 * tr + v2 * nr;
+    x.z[a] = pz + u2 * tz + v2 * nz;
+  }
+  return x;
+}
+
+TEST(CreaseFan, HoldsACreaseClosedToWhereTwoElementsFold) {
+  const auto plain = body(spec(0.0));
+  const auto fan = body(spec(1.5e-3));
+  // The structured mesh's node at the same place.
+  int root = -1;
+  for (int a : plain.inner()) {
+    if (plain.nodes().r[a] == fan.nodes().r[fan.crease_root()] &&
+        plain.nodes().z[a] == fan.nodes().z[fan.crease_root()]) {
+      root = a;
+    }
+  }
+  ASSERT_GE(root, 0);
+  // Closing within 0.2 mm of the root (the elements are 0.5 mm), opening out to 0.6 mm.
+  const double r1 = 0.2e-3, r2 = 0.6e-3;
+  EXPECT_NO_THROW(plain.check_folds(close_crease(plain, root, 1.7, r1, r2)));
+  EXPECT_NO_THROW(fan.check_folds(close_crease(fan, fan.crease_root(), 1.7, r1, r2)));
+  // The surface turned through 144 degrees: the structured elements' corners at the root
+  // (162 degrees each) fold them between their nodes.
+  EXPECT_THROW(plain.check_folds(close_crease(plain, root, 1.8, r1, r2)), fem::FoldedElement);
+  // Closed, the surface turned through 180 degrees.
+  EXPECT_NO_THROW(fan.check_folds(close_crease(fan, fan.crease_root(), 2.0, r1, r2)));
+}
+
+TEST(CreaseFan, ANodeItCannotUseIsRefused) {
+  EXPECT_THROW(body(spec(1.5e-3, 1)), std::invalid_argument);  // one element through h
+  EXPECT_THROW(body(spec(-1e-3)), std::invalid_argument);
+  EXPECT_THROW(body(spec(std::nan(""))), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace snapjump::axi
