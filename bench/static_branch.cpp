@@ -111,7 +111,10 @@ int run(int argc, char** argv) {
   fmt::print(
       "  last point V / V0 = {:.4f}, dp = {:.5f} p_Zoelly, {}stable under pressure control\n",
       b.points.back().volume / V0, b.points.back().dp / pc, b.stable ? "" : "not ");
-  fmt::print("  {}\n", b.reached_end ? "reached the end volume" : b.stop_reason);
+  fmt::print("  {}\n", b.reached_end       ? "reached the end"
+                       : b.snaps_below_end ? "stopped at a maximum of dp below the end's: a snap "
+                                             "under pressure control"
+                                           : b.stop_reason);
   const auto biot = fem::biot_instability(body.material());
   fmt::print(
       "  the inner surface's crease measure at the last point: {:.4g} at {:.3g} mm from the rim "

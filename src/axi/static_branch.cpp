@@ -375,6 +375,7 @@ StaticBranch Tracer::run() {
   double ds = o_.step, taken = o_.step;
   const double scale = body_.spec().h * std::sqrt(static_cast<double>(s.u.size()));
   int rise = -1;  // -1 rising to p_c, 0 falling after a maximum, 1 rising after a minimum
+  bool inverted_minimum = false;  // the last minimum lay on the inverted side (V < 0)
   while (static_cast<int>(b.points.size()) < o_.max_points) {
     State trial = s;
     // The first step: volume control.
@@ -431,10 +432,21 @@ StaticBranch Tracer::run() {
                                   o_.max_dp_before_buckling);
       break;
     }
-    const bool turned_up = rise == 0 && dq > 0;  // previous was a minimum
-    if (rise < 0 && dq < 0) rise = 0;            // past a maximum
-    if (turned_up) rise = 1;                     // and then a minimum
-    if (rise == 1 && dq < 0) rise = 0;
+    const bool turned_up = rise == 0 && dq > 0;    // previous was a minimum
+    const bool turned_down = rise == 1 && dq < 0;  // previous was a maximum after one
+    if (rise < 0 && dq < 0) rise = 0;              // past a maximum
+    if (turned_up) {                               // and then a minimum
+      rise = 1;
+      inverted_minimum = previous->v < 0.0;
+    }
+    if (turned_down) rise = 0;
+    if (turned_down && inverted_minimum && previous->v < 0.0 && std::isfinite(o_.end_dp) &&
+        previous->q * o_.p_ref < o_.end_dp) {
+      b.snaps_below_end = true;
+      s = *previous;
+      b.points.pop_back();
+      break;
+    }
     // end_dp is met on the inverted side only (V < 0: the shell through its rim's plane).
     if (rise == 1 && s.v < 0.0 && std::isfinite(o_.end_dp) && s.q * o_.p_ref >= o_.end_dp) {
       if (previous->q * o_.p_ref < o_.end_dp) {

@@ -57,6 +57,7 @@ struct BranchOptions {
   double min_step = 1e-5;    // below this the continuation gives up
   double end_volume = -1.0;  // stop once v = V / V0 falls below this
   // Or, past p_c and a minimum, on the inverted side (V < 0), stop once dp rises to end_dp [Pa]
+  // (or at a maximum below it that follows a minimum on the inverted side, snaps_below_end)
   // (NaN: not used), and solve for the equilibrium at exactly end_dp (StaticBranch::state). Where
   // that minimum already lies above end_dp, the segment rising from it holds no equilibrium at
   // end_dp: the branch stops at its first point (StaticBranch::end_above, the state at that
@@ -84,6 +85,11 @@ struct StaticBranch {
   bool reached_end = false;  // v fell below end_volume, or dp rose to end_dp
   // It stopped at the foot of an inverted segment whose minimum lies above end_dp.
   bool end_above = false;
+  // The inverted segment rising from a minimum on the inverted side towards end_dp turned down
+  // at a maximum of dp below end_dp: a limit point, where a shell under pressure control snaps
+  // (where the inner surface creases, the crease's nucleation, which is subcritical). The branch
+  // stopped at that maximum.
+  bool snaps_below_end = false;
   std::string stop_reason;  // why it stopped, when it did not reach the end
   // The fold that stopped it, if one did (at the last point).
   std::optional<fem::FoldedElement> fold;

@@ -484,13 +484,7 @@ Case build(const Reader& r, Case c) {
   graded_pair("contact_element_size", c.numerics.contact_element_size, "contact_band",
               c.numerics.contact_band);
   if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
-  if (c.numerics.crease_fan) {
-    positive("numerics", "crease_fan", *c.numerics.crease_fan);
-    check(c.numerics.model == Model::Axisymmetric,
-          fmt::format("{} places a crease's root in the axisymmetric mesh: give it with "
-                      "numerics.model = \"axisymmetric\"",
-                      r.where(spec("numerics", "crease_fan"))));
-  }
+  if (c.numerics.crease_fan) positive("numerics", "crease_fan", *c.numerics.crease_fan);
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
   if (c.numerics.time_step_factor) {
     positive("numerics", "time_step_factor", *c.numerics.time_step_factor);

@@ -109,8 +109,15 @@ std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(
                     last.volume / b.V0, last.dp, last.dp / p_ref, dp),
         *b.fold);
   }
-  return QuasiStaticBuckle{b.reached_end, b.end_above, b.stable, last.dp,
-                           b.p_c,         b.p_minus,   b.p_hold, b.stop_reason};
+  return QuasiStaticBuckle{.reached = b.reached_end,
+                           .foot = b.end_above,
+                           .snaps = b.snaps_below_end,
+                           .stable = b.stable,
+                           .dp = last.dp,
+                           .p_c = b.p_c,
+                           .p_minus = b.p_minus,
+                           .p_hold = b.p_hold,
+                           .note = b.stop_reason};
 }
 
 void AxiShell::start_on_plate(core::RigidBody& container, double mu, double damping) {

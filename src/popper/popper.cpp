@@ -45,6 +45,12 @@ Numerics resolve_numerics(const config::Case& c) {
           ? std::max(
                 2, static_cast<int>(std::ceil(c.shell.R * c.shell.phi / *c.numerics.element_size)))
           : axi::elements_along(c.shell.R, c.shell.h, c.shell.phi, n.axi_through);
+  if (c.numerics.crease_fan && n.model != config::Model::Axisymmetric) {
+    throw config::CaseError(fmt::format(
+        "{}: numerics.crease_fan places a crease's root in the axisymmetric mesh: run it with "
+        "numerics.model = \"axisymmetric\"",
+        c.source));
+  }
   n.axi_crease_fan = c.numerics.crease_fan.value_or(0.0);
   // The plate acts on a particle whose stencil holds a plate node, i.e. from up to 1.5 cells
   // away, and a shell pressed on it stands a fraction of a cell off (docs/validation.md,
@@ -339,8 +345,11 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
   }
   // At the foot of an inverted segment above delta_p_j (its minimum, p_hold, lies above it) the
   // state is a limit point's neighbour: the lowered suction of phase 2 decides what follows.
+  // Where the segment turns down at a maximum below delta_p_j (a limit point: a subcritical
+  // crease's nucleation), the shell snaps under the suction there: phase 2's dynamics take it
+  // from that state, as the dynamics take the natural state through buckling.
   const bool foot = qs.foot;
-  if (!qs.reached || !(qs.stable || foot) || !inverted()) {
+  if (!(qs.reached || qs.snaps) || !(qs.stable || foot || qs.snaps) || !inverted()) {
     prep.message = fmt::format(
         "the pressure-volume branch did not bring the shell to a stable inverted state under "
         "{:.0f} Pa ({:.2f} p_c){}{}",
@@ -354,13 +363,21 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
                  "to the foot of its inverted segment at {:.0f} Pa ({:.3f} p_c), above "
                  "delta_p_j",
                  qs.dp, qs.dp / pc)
-           : fmt::format("to its inverted equilibrium at delta_p_j, {:.0f} Pa ({:.2f} p_c)", qs.dp,
-                         qs.dp / pc);
+      : qs.snaps ? fmt::format(
+                       "to the maximum of its inverted segment at {:.0f} Pa ({:.3f} p_c), below "
+                       "delta_p_j, to snap from there in time",
+                       qs.dp, qs.dp / pc)
+                 : fmt::format("to its inverted equilibrium at delta_p_j, {:.0f} Pa ({:.2f} p_c)",
+                               qs.dp, qs.dp / pc);
+  const auto hold =
+      std::isfinite(qs.p_hold)
+          ? fmt::format("holds fully inverted down to {:.0f} Pa ({:.3f} p_c)", qs.p_hold,
+                        qs.p_hold / pc)
+          : std::string("holds fully inverted down to a suction the branch did not reach");
   prep.message = fmt::format(
       "inverted along the quasi-static pressure-volume branch {}: it buckles at {:.0f} Pa ({:.3f} "
-      "p_c), holds fully inverted down to {:.0f} Pa ({:.3f} p_c) and has no buckled state below "
-      "{:.0f} Pa ({:.3f} p_c)",
-      where, qs.p_c, qs.p_c / pc, qs.p_hold, qs.p_hold / pc, qs.p_minus, qs.p_minus / pc);
+      "p_c), {} and has no buckled state below {:.0f} Pa ({:.3f} p_c)",
+      where, qs.p_c, qs.p_c / pc, hold, qs.p_minus, qs.p_minus / pc);
   return true;
 }
 

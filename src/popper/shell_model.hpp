@@ -61,13 +61,18 @@ class ShellModel {
   // maximum (which must lie below max_dp) and on to the inverted segment, where the shell is put
   // at rest in the equilibrium of suction dp. p_ref: the pressure scale (Zoelly's p_c). Where the
   // inverted segment's lowest suction lies above dp, the shell is left at the foot of that
-  // segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction from there. Throws
+  // segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction from there; where the
+  // segment turns down at a maximum on the way up to dp, at that maximum, for the dynamics to
+  // snap it under that suction and raise the suction from there. Throws
   // fem::FoldedElement when the branch folds an element before it gets there.
   struct QuasiStaticBuckle {
     bool reached = false;  // an end state was found (at dp, or at the foot above it)
     bool foot = false;     // at the foot of an inverted segment whose lowest suction exceeds dp
-    bool stable = false;   // and is stable under pressure control
-    double dp = 0.0;       // the suction of that end state [Pa]
+    // Or at a maximum of the inverted segment below dp, where the shell snaps under that
+    // suction (axi::StaticBranch::snaps_below_end).
+    bool snaps = false;
+    bool stable = false;  // and is stable under pressure control
+    double dp = 0.0;      // the suction of that end state [Pa]
     // The branch's buckling maximum, its lowest suction after it (below which no buckled state
     // is left) and the lowest suction that holds the fully inverted shell [Pa] (NaN: not found).
     double p_c = 0.0, p_minus = 0.0, p_hold = 0.0;

@@ -670,6 +670,26 @@ TEST(Cli, TheGroundedShellsInnerSurfaceIsPrintedAndKeptInTheSummary) {
   EXPECT_LT(s["from_rim"].get<double>(), 5e-3);
 }
 
+TEST(Cli, ACreaseFanIsPrintedAndKeptInTheSummaryAndRefusedByThe3DModel) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_crease_fan";
+  std::filesystem::remove_all(dir);
+  const auto r = run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--crease-fan",
+                      "2mm", "--end-time", "1ms", "--output", dir.string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("crease fan  a crease's root at the inner surface's node"),
+            std::string::npos)
+      << r.out;
+  std::ifstream in(dir / "summary.json");
+  const auto n = nlohmann::json::parse(in)["numerics"];
+  // The coarse (30, 2.0) mm cap's inner corner nodes are 29 mm x 80 deg / 21 = 1.93 mm apart:
+  // the one nearest 2 mm is the first.
+  EXPECT_NEAR(n["crease_fan_from_rim"].get<double>(), 29e-3 * 80.0 / 180.0 * 3.14159265 / 21, 1e-6);
+  const auto three_d =
+      run({"run", "--crease-fan", "2mm", "--end-time", "1ms", "--output", (dir / "3d").string()});
+  EXPECT_EQ(three_d.code, kExitBadInput);
+  EXPECT_NE(three_d.err.find("numerics.crease_fan"), std::string::npos) << three_d.err;
+}
+
 TEST(Cli, RunSaysWhereALinkedOutputFolderReallyIs) {
   const auto base = std::filesystem::temp_directory_path() / "snapjump_cli_linked_output";
   std::filesystem::remove_all(base);

@@ -111,6 +111,32 @@ TEST(StaticBranch, BelowTheInvertedSegmentItStopsAtItsFoot) {
   EXPECT_NEAR(above.points.back().dp / o.end_dp, 1.0, 1e-9);
 }
 
+// At 1 mm along, the inverted segment rising towards 1.4 p_c creases next to the clamp and turns
+// down at a maximum of dp below it: a limit point, where a shell under pressure control snaps.
+// Aimed at 1.4 p_c, the branch stops there, and the point where it stops is a maximum of the
+// same branch traced on without an end pressure.
+TEST(StaticBranch, StopsAtAMaximumOfTheInvertedSegmentBelowTheSuctionAsked) {
+  const Body body = make_body(42);
+  auto o = options(-1.2);
+  o.end_dp = 1.4 * kPref;
+  const auto b = trace_static_branch(body, o);
+  ASSERT_TRUE(b.snaps_below_end) << b.stop_reason;
+  EXPECT_FALSE(b.reached_end);
+  const double at = b.points.back().dp, v = b.points.back().volume;
+  std::printf("stops at %.5f p_Zoelly, V / V0 = %.4f\n", at / kPref, v / b.V0);
+  EXPECT_LT(at, o.end_dp);
+  EXPECT_GT(at, b.p_minus);
+  EXPECT_LT(v, 0.0);
+  auto on = options(-1.2);
+  const auto full = trace_static_branch(body, on);
+  std::size_t k = 0;  // the same point on the branch traced on
+  while (k < full.points.size() && full.points[k].volume != v) ++k;
+  ASSERT_LT(k + 1, full.points.size()) << "the branch traced on has no point past it";
+  EXPECT_EQ(full.points[k].dp, at);
+  EXPECT_LT(full.points[k + 1].dp, at);
+  EXPECT_GT(at, full.points[k - 1].dp);
+}
+
 TEST(StaticBranch, BucklingPressureConvergesAlongTheMeridian) {
   const auto coarse = trace_static_branch(make_body(21), options(0.8));
   const auto fine = trace_static_branch(make_body(42), options(0.8));

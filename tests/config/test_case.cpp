@@ -260,6 +260,17 @@ TEST(CaseFile, BulkIntegrationIsFullOrReduced) {
   expect_error(kMinimal + "[numerics]\nbulk = \"full\"\n", {"bulk_integration"});
 }
 
+TEST(CaseFile, ACreaseFanIsALengthOfTheAxisymmetricMesh) {
+  const auto c = parse_case(
+      kMinimal + "[numerics]\nmodel = \"axisymmetric\"\ncrease_fan = \"2.15 mm\"\n", "case.toml");
+  ASSERT_TRUE(c.numerics.crease_fan.has_value());
+  EXPECT_DOUBLE_EQ(*c.numerics.crease_fan, 2.15e-3);
+  expect_error(kMinimal + "[numerics]\nmodel = \"axisymmetric\"\ncrease_fan = \"2 kg\"\n",
+               {"numerics.crease_fan"});
+  expect_error(kMinimal + "[numerics]\nmodel = \"axisymmetric\"\ncrease_fan = \"-1 mm\"\n",
+               {"numerics.crease_fan"});
+}
+
 TEST(CaseFile, TheLawIsNeoHookeanUnlessGentWithItsLockingValue) {
   EXPECT_EQ(parse_case(kMinimal, "case.toml").material.law, Law::NeoHookean);
   const auto gent =

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <stdexcept>
+#include <string>
 
 #include "config/case.hpp"
 #include "fem/surface_instability.hpp"
@@ -26,6 +27,20 @@ TEST(Numerics, EachModelHasItsOwnBulkIntegrationUnlessTheCaseSetsOne) {
   c.numerics.model = config::Model::ThreeD;
   c.numerics.bulk_integration = config::BulkIntegration::Reduced;
   EXPECT_TRUE(resolve_numerics(c).reduced_bulk);
+}
+
+// A crease fan belongs to the axisymmetric mesh; the 3D model refuses it by name.
+TEST(Numerics, ACreaseFanIsTheAxisymmetricModels) {
+  auto c = config::default_case();
+  c.numerics.crease_fan = 2e-3;
+  try {
+    (void)resolve_numerics(c);
+    FAIL() << "the 3D model took a crease fan";
+  } catch (const config::CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("numerics.crease_fan"), std::string::npos) << e.what();
+  }
+  c.numerics.model = config::Model::Axisymmetric;
+  EXPECT_EQ(resolve_numerics(c).axi_crease_fan, 2e-3);
 }
 
 // Without numerics.end_time a run goes to the apex of its flight, capped well past the apexes on
