@@ -4,8 +4,8 @@
 // measure and where it is, axi/surface_stretch.hpp).
 //
 //   build/static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V_OVER_V0] [--grading G]
-//                       [--end-dp DP_OVER_P_ZOELLY] [--crease-fan FROM_RIM_mm]
-//                       THROUGH ALONG [R_mm h_mm [PHI_deg [NU]]]
+//                       [--end-dp DP_OVER_P_ZOELLY] [--crease-fan FROM_RIM_mm [--crease-fan-band
+//                       mm]] THROUGH ALONG [R_mm h_mm [PHI_deg [NU]]]
 #include "axi/static_branch.hpp"
 
 #include <fmt/format.h>
@@ -35,7 +35,7 @@ int run(int argc, char** argv) {
   std::string csv;
   std::vector<double> pos;
   double end_dp = std::numeric_limits<double>::quiet_NaN();
-  double grading = 1.0, fan = 0.0;
+  double grading = 1.0, fan = 0.0, band = 0.0;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--no-contacts") {
       o.contacts = false;
@@ -45,6 +45,8 @@ int run(int argc, char** argv) {
       o.step = std::stod(args[++i]);
     } else if (args[i] == "--grading" && i + 1 < args.size()) {
       grading = std::stod(args[++i]);
+    } else if (args[i] == "--crease-fan-band" && i + 1 < args.size()) {
+      band = std::stod(args[++i]) * 1e-3;
     } else if (args[i] == "--crease-fan" && i + 1 < args.size()) {
       fan = std::stod(args[++i]) * 1e-3;
     } else if (args[i] == "--end-dp" && i + 1 < args.size()) {
@@ -58,7 +60,8 @@ int run(int argc, char** argv) {
   if (pos.size() < 2) {
     std::fprintf(stderr,
                  "usage: static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V/V0] "
-                 "[--grading G] [--end-dp DP] [--crease-fan FROM_RIM_mm] THROUGH ALONG [R_mm h_mm "
+                 "[--grading G] [--end-dp DP] [--crease-fan FROM_RIM_mm [--crease-fan-band mm]] "
+                 "THROUGH ALONG [R_mm h_mm "
                  "[PHI_deg [NU]]]\n");
     return 2;
   }
@@ -72,7 +75,8 @@ int run(int argc, char** argv) {
                         .through = static_cast<int>(pos[0]),
                         .along = static_cast<int>(pos[1]),
                         .rim_grading = grading,
-                        .crease_fan_from_rim = fan},
+                        .crease_fan_from_rim = fan,
+                        .crease_fan_band = band},
                        fem::Material::from_young(kE, nu, kRho));
   const double pc = theory::zoelly_pressure(kE, h, R, nu);
   o.p_ref = pc;
@@ -100,8 +104,8 @@ int run(int argc, char** argv) {
       1e3 * R, 1e3 * h, phi * 180 / std::numbers::pi, nu, body.spec().along, body.spec().through,
       o.contacts ? "on" : "off", b.points.size(), wall, grading);
   if (body.crease_root() >= 0) {
-    fmt::print("  crease fan at the inner node {:.4g} mm from the rim\n",
-               1e3 * body.crease_root_from_rim());
+    fmt::print("  crease fan at the inner node {:.4g} mm from the rim ({} fans)\n",
+               1e3 * body.crease_root_from_rim(), body.crease_fans());
   }
   fmt::print("  p_c = {:.6g} Pa = {:.5f} p_Zoelly at V / V0 = {:.4f}\n", b.p_c, b.p_c / pc, b.v_c);
   fmt::print("  p_- = {:.6g} Pa = {:.5f} p_Zoelly at V / V0 = {:.4f}\n", b.p_minus, b.p_minus / pc,

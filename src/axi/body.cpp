@@ -61,7 +61,8 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   if (!(spec.R > 0.0 && spec.h > 0.0 && spec.h < spec.R && spec.phi > 0.0 &&
         spec.phi < std::numbers::pi && spec.through >= 1 && spec.along >= 1 &&
         spec.rim_grading >= 1.0 && spec.rim_grading <= 100.0 && spec.crease_fan_from_rim >= 0.0 &&
-        std::isfinite(spec.crease_fan_from_rim))) {
+        std::isfinite(spec.crease_fan_from_rim) && spec.crease_fan_band >= 0.0 &&
+        std::isfinite(spec.crease_fan_band))) {
     throw std::invalid_argument(
         fmt::format("unusable axisymmetric mesh: R = {} m, h = {} m, phi = {} rad, {} x {} "
                     "elements, rim grading {} (1 to 100)",
@@ -102,7 +103,7 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
       elements_.push_back(el);
     }
   }
-  if (spec.crease_fan_from_rim > 0.0) add_crease_fan(theta);
+  if (spec.crease_fan_from_rim > 0.0) add_crease_fans(theta);
 
   // Quadrature data, and the consistent mass's diagonal for the lumping.
   mass_.assign(nodes_.size(), 0.0);
@@ -175,14 +176,13 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
 // (and its mirror): every element convex whatever the block's aspect, P's three corners about
 // 60 degrees on square elements. The block's boundary, its edges' middle nodes included, is
 // the lattice's, so the fan conforms to the elements around it.
-void Body::add_crease_fan(const std::vector<double>& theta) {
-  const int ni = 2 * spec_.along + 1, nj = 2 * spec_.through + 1;
+void Body::add_crease_fans(const std::vector<double>& theta) {
   const double inner_radius = spec_.R - 0.5 * spec_.h;
-  int root = -1;  // the element index e_c along whose first corner is P
+  const auto from_rim = [&](int e) { return inner_radius * (spec_.phi - theta[2 * e]); };
+  int root = -1;  // the element index along whose first corner is the root
   double best = std::numeric_limits<double>::infinity();
   for (int e = 1; e < spec_.along; ++e) {
-    const double d =
-        std::abs(inner_radius * (spec_.phi - theta[2 * e]) - spec_.crease_fan_from_rim);
+    const double d = std::abs(from_rim(e) - spec_.crease_fan_from_rim);
     if (d < best) best = d, root = e;
   }
   if (spec_.through < 2 || root < 0) {
@@ -190,6 +190,20 @@ void Body::add_crease_fan(const std::vector<double>& theta) {
         "a crease fan needs two or more elements through h and two along ({} x {} here)",
         spec_.along, spec_.through));
   }
+  // Every second corner node within half the band on either side: the blocks do not overlap.
+  const double half = 0.5 * spec_.crease_fan_band;
+  const double centre = from_rim(root);
+  add_fan_block(root, theta);
+  for (int e = root - 2; e >= 1 && from_rim(e) <= centre + half; e -= 2) add_fan_block(e, theta);
+  for (int e = root + 2; e < spec_.along && from_rim(e) >= centre - half; e += 2) {
+    add_fan_block(e, theta);
+  }
+  crease_root_ = 2 * root * (2 * spec_.through + 1);
+  drop_unused_nodes();
+}
+
+void Body::add_fan_block(int root, const std::vector<double>& theta) {
+  const int ni = 2 * spec_.along + 1, nj = 2 * spec_.through + 1;
   const int i0 = 2 * (root - 1);
   const auto lattice_point = [&](double u, double v) {
     const double i = i0 + u;
@@ -248,8 +262,7 @@ void Body::add_crease_fan(const std::vector<double>& theta) {
   elements_[static_cast<std::size_t>(root * T)] = fan[2];
   elements_[static_cast<std::size_t>(root * T + 1)] = fan[4];
   elements_.push_back(fan[1]);
-  crease_root_ = (i0 + 2) * nj;
-  drop_unused_nodes();
+  ++crease_fans_;
 }
 
 double Body::crease_root_from_rim() const {

@@ -45,6 +45,9 @@ struct MeshSpec {
   // 0: no fan. Needs two or more elements through h; the node lies between the first element
   // and the last.
   double crease_fan_from_rim = 0.0;
+  // And every second corner node within this arc length about that one [m]: a band of roots,
+  // where the crease's place is known only to within it. 0: the one node.
+  double crease_fan_band = 0.0;
 };
 
 // Meridian positions (structure of arrays).
@@ -77,8 +80,10 @@ class Body {
   [[nodiscard]] const std::vector<int>& outer() const { return outer_; }
   [[nodiscard]] const std::vector<int>& inner() const { return inner_; }
   [[nodiscard]] int apex() const { return outer_.front(); }
-  // The fan's root node (MeshSpec::crease_fan_from_rim), or -1 without one.
+  // The fan's root node nearest MeshSpec::crease_fan_from_rim, or -1 without one.
   [[nodiscard]] int crease_root() const { return crease_root_; }
+  // How many fans the mesh has (MeshSpec::crease_fan_band).
+  [[nodiscard]] int crease_fans() const { return crease_fans_; }
   // Its arc length from the rim on the reference inner surface [m]; NaN without one.
   [[nodiscard]] double crease_root_from_rim() const;
 
@@ -130,9 +135,10 @@ class Body {
   double total_mass_ = 0.0;
   double volume_ = 0.0;
   std::vector<int> axis_, rim_, outer_, inner_;
-  int crease_root_ = -1;
+  int crease_root_ = -1, crease_fans_ = 0;
 
-  void add_crease_fan(const std::vector<double>& theta);
+  void add_crease_fans(const std::vector<double>& theta);
+  void add_fan_block(int root, const std::vector<double>& theta);
   void drop_unused_nodes();
 };
 

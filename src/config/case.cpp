@@ -95,6 +95,11 @@ constexpr KeySpec kKeys[] = {
      "axisymmetric: arc length from the rim along the inner surface of a crease's root, given a "
      "fan of three elements so that a closed crease folds none (none when absent)",
      nullptr, +[](Case& c) { return &c.numerics.crease_fan; }},
+    {"numerics", "crease_fan_band", "crease-fan-band", Dimension::Length, false, std::nullopt, "",
+     "1.5 mm",
+     "axisymmetric: with numerics.crease_fan, fans at every second inner-surface node within "
+     "this arc length about it, where the crease's root is known only to within it",
+     nullptr, +[](Case& c) { return &c.numerics.crease_fan_band; }},
     {"numerics", "time_step_factor", "time-step-factor", Dimension::Dimensionless, false,
      std::nullopt, "", "0.5",
      "3D elastic time step factor: dt = factor * smallest node spacing / p-wave speed (0.5 when "
@@ -485,6 +490,11 @@ Case build(const Reader& r, Case c) {
               c.numerics.contact_band);
   if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.crease_fan) positive("numerics", "crease_fan", *c.numerics.crease_fan);
+  if (c.numerics.crease_fan_band) {
+    positive("numerics", "crease_fan_band", *c.numerics.crease_fan_band);
+    check(c.numerics.crease_fan.has_value(),
+          "numerics.crease_fan_band spreads the fans about numerics.crease_fan: give both");
+  }
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
   if (c.numerics.time_step_factor) {
     positive("numerics", "time_step_factor", *c.numerics.time_step_factor);

@@ -137,8 +137,10 @@ struct Numerics {
   std::optional<double> contact_element_size, contact_band;  // [m]
   // Axisymmetric: the inner surface's node nearest this arc length from the rim is a crease's
   // root, with a fan of three elements (axi::MeshSpec::crease_fan_from_rim); none when absent.
-  std::optional<double> crease_fan;    // [m]
-  std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)
+  std::optional<double> crease_fan;  // [m]
+  // And every second inner corner node within this arc length about it (a band of roots).
+  std::optional<double> crease_fan_band;  // [m]
+  std::optional<double> grid_spacing;     // [m]; from the resolution preset (a fraction of h)
   // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
   // 1, fine 2; axisymmetric: 2, 4, 8).
   std::optional<int> elements_through_thickness;

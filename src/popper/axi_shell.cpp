@@ -27,7 +27,8 @@ axi::Body make_body(const config::Case& c, const Numerics& n) {
                                  .through = n.axi_through,
                                  .along = n.axi_along,
                                  .reduced_bulk = n.reduced_bulk,
-                                 .crease_fan_from_rim = n.axi_crease_fan},
+                                 .crease_fan_from_rim = n.axi_crease_fan,
+                                 .crease_fan_band = n.axi_crease_fan_band},
                    body_material(c.material));
 }
 
@@ -57,8 +58,12 @@ std::string AxiShell::describe() const {
   if (body_.crease_root() >= 0) {
     text += fmt::format(
         "  crease fan  a crease's root at the inner surface's node {:.3g} mm from the rim, three "
-        "elements around it (numerics.crease_fan)\n",
-        1e3 * body_.crease_root_from_rim());
+        "elements around it (numerics.crease_fan){}\n",
+        1e3 * body_.crease_root_from_rim(),
+        body_.crease_fans() > 1
+            ? fmt::format("; {} such roots, every second node within {:.3g} mm about it",
+                          body_.crease_fans(), 1e3 * body_.spec().crease_fan_band)
+            : std::string());
   }
   return text;
 }
@@ -74,6 +79,7 @@ nlohmann::json AxiShell::numerics_json() const {
       {"elements_through", s.through},
       {"crease_fan_from_rim",
        body_.crease_root() < 0 ? nlohmann::json() : nlohmann::json(body_.crease_root_from_rim())},
+      {"crease_fans", body_.crease_fans()},
       {"dt", dynamics_.dt()},
       {"omega_max", omega_max_}};
 }

@@ -52,6 +52,7 @@ Numerics resolve_numerics(const config::Case& c) {
         c.source));
   }
   n.axi_crease_fan = c.numerics.crease_fan.value_or(0.0);
+  n.axi_crease_fan_band = c.numerics.crease_fan_band.value_or(0.0);
   // The plate acts on a particle whose stencil holds a plate node, i.e. from up to 1.5 cells
   // away, and a shell pressed on it stands a fraction of a cell off (docs/validation.md,
   // "Standoff"): the cell is a fraction of the thickness h, which sets the scale of the

@@ -38,6 +38,7 @@ struct Numerics {
   int axi_through = 0;                          // axisymmetric: elements through h
   int axi_along = 0;                            // axisymmetric: elements along the meridian
   double axi_crease_fan = 0.0;                  // axisymmetric: crease root from the rim [m]
+  double axi_crease_fan_band = 0.0;             // axisymmetric: roots within this band [m]
   double time_step_factor = kTimeStepFactor;    // elastic time step factor (3D)
   double probe_interval = 1e-4;                 // [s] between samples of the time series
   double snapshot_interval = 5e-3;              // [s] between VTU snapshots

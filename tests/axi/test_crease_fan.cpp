@@ -59,6 +59,31 @@ TEST(CreaseFan, TheSolidAndItsSurfacesAreTheStructuredMeshs) {
   EXPECT_NO_THROW(fan.check_folds(fan.nodes()));
 }
 
+// A band of roots: every second corner node within half the band on either side of the one
+// nearest crease_fan_from_rim, each with its own block and three elements at its root.
+TEST(CreaseFan, ABandHasARootAtEverySecondNodeWithinIt) {
+  const auto plain = body(spec(0.0, 4, 140));
+  auto s = spec(1.5e-3, 4, 140);
+  s.crease_fan_band = 1.5e-3;
+  const auto band = body(s);
+  // 0.2393 mm between corner nodes on the inner surface: roots at 1.44 mm and 0.479 mm on either
+  // side of it (0.96 to 1.92 mm from the rim), the next (0.48 or 2.40 mm) outside the band.
+  const double step = (kR - 0.5 * kH) * kPhi / 140;
+  EXPECT_NEAR(band.crease_root_from_rim(), 6 * step, 1e-12);
+  EXPECT_EQ(band.crease_fans(), 3);
+  EXPECT_EQ(band.num_elements(), plain.num_elements() + 3);
+  EXPECT_EQ(band.num_nodes(), plain.num_nodes() + 3 * 4);
+  EXPECT_NEAR(band.reference_volume() / plain.reference_volume(), 1.0, 1e-12);
+  std::vector<int> elements_at(band.num_nodes(), 0);
+  for (const auto& el : band.elements()) {
+    for (int m : el) ++elements_at[m];
+  }
+  int roots = 0;
+  for (int a : band.inner()) roots += elements_at[a] == 3 ? 1 : 0;
+  EXPECT_EQ(roots, 3);
+  EXPECT_NO_THROW(band.check_folds(band.nodes()));
+}
+
 // A uniform dilatation's stress is uniform and isotropic, in equilibrium without body forces, so
 // no node inside the body carries a force; the full 3 x 3 rule integrates it exactly on any
 // 9-node quadrilateral. Flat, square and tall elements give the fan three different shapes.
@@ -146,6 +171,9 @@ TEST(CreaseFan, ANodeItCannotUseIsRefused) {
   EXPECT_THROW(body(spec(1.5e-3, 1)), std::invalid_argument);  // one element through h
   EXPECT_THROW(body(spec(-1e-3)), std::invalid_argument);
   EXPECT_THROW(body(spec(std::nan(""))), std::invalid_argument);
+  auto s = spec(1.5e-3);
+  s.crease_fan_band = -1e-3;
+  EXPECT_THROW(body(s), std::invalid_argument);
 }
 
 }  // namespace

@@ -269,6 +269,8 @@ TEST(CaseFile, ACreaseFanIsALengthOfTheAxisymmetricMesh) {
                {"numerics.crease_fan"});
   expect_error(kMinimal + "[numerics]\nmodel = \"axisymmetric\"\ncrease_fan = \"-1 mm\"\n",
                {"numerics.crease_fan"});
+  expect_error(kMinimal + "[numerics]\nmodel = \"axisymmetric\"\ncrease_fan_band = \"1 mm\"\n",
+               {"numerics.crease_fan_band", "give both"});
 }
 
 TEST(CaseFile, TheLawIsNeoHookeanUnlessGentWithItsLockingValue) {
