@@ -93,7 +93,7 @@ constexpr KeySpec kKeys[] = {
      nullptr, +[](Case& c) { return &c.numerics.contact_band; }},
     {"numerics", "crease_fan", "crease-fan", Dimension::Length, false, std::nullopt, "", "1.5 mm",
      "axisymmetric: arc length from the rim along the inner surface of a crease's root, given a "
-     "fan of three elements so that a closed crease folds none (none when absent)",
+     "fan of three elements so that a crease closed there folds no element (none when absent)",
      nullptr, +[](Case& c) { return &c.numerics.crease_fan; }},
     {"numerics", "crease_fan_band", "crease-fan-band", Dimension::Length, false, std::nullopt, "",
      "1.5 mm",
