@@ -65,8 +65,10 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
         std::isfinite(spec.crease_fan_band))) {
     throw std::invalid_argument(
         fmt::format("unusable axisymmetric mesh: R = {} m, h = {} m, phi = {} rad, {} x {} "
-                    "elements, rim grading {} (1 to 100)",
-                    spec.R, spec.h, spec.phi, spec.along, spec.through, spec.rim_grading));
+                    "elements, rim grading {} (1 to 100), crease fan {} m (band {} m; neither "
+                    "negative)",
+                    spec.R, spec.h, spec.phi, spec.along, spec.through, spec.rim_grading,
+                    spec.crease_fan_from_rim, spec.crease_fan_band));
   }
   // Node lattice (i, j): i = 0..2 along along the meridian (polar angle), j = 0..2 through
   // through the thickness (inner to outer).
@@ -168,14 +170,8 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   for (double m : mass_) total_mass_ += m;
 }
 
-// The fan replaces the 2 x 2 block of elements whose inner-surface edge's middle corner is the
-// root P: in the block's lattice coordinates (u along, v through, 0..4 each) its corners are
-// A (0, 0), P (2, 0), B (4, 0), C (0, 2), D (4, 2), E (0, 4), M (2, 4), F (4, 4), and its
-// five elements are A P O1 C, P O2 M O1, P B D O2, C O1 M E and O2 D F M, with two new
-// corners O1, O2 at v = 1.6 on rays from P that split the angle between PD and the normal
-// (and its mirror): every element convex whatever the block's aspect, P's three corners about
-// 60 degrees on square elements. The block's boundary, its edges' middle nodes included, is
-// the lattice's, so the fan conforms to the elements around it.
+// The root nearest MeshSpec::crease_fan_from_rim and, with a band, every second corner node
+// within it get a fan each; the lattice's nodes the blocks no longer hold are dropped.
 void Body::add_crease_fans(const std::vector<double>& theta) {
   const double inner_radius = spec_.R - 0.5 * spec_.h;
   const auto from_rim = [&](int e) { return inner_radius * (spec_.phi - theta[2 * e]); };
@@ -202,6 +198,14 @@ void Body::add_crease_fans(const std::vector<double>& theta) {
   drop_unused_nodes();
 }
 
+// The fan replaces the 2 x 2 block of elements whose inner-surface edge's middle corner is the
+// root P: in the block's lattice coordinates (u along, v through, 0..4 each) its corners are
+// A (0, 0), P (2, 0), B (4, 0), C (0, 2), D (4, 2), E (0, 4), M (2, 4), F (4, 4), and its
+// five elements are A P O1 C, P O2 M O1, P B D O2, C O1 M E and O2 D F M, with two new
+// corners O1, O2 at v = 1.6 on rays from P that split the angle between PD and the normal
+// (and its mirror): every element convex whatever the block's aspect, P's three corners about
+// 60 degrees on square elements. The block's boundary, its edges' middle nodes included, is
+// the lattice's, so the fan conforms to the elements around it.
 void Body::add_fan_block(int root, const std::vector<double>& theta) {
   const int ni = 2 * spec_.along + 1, nj = 2 * spec_.through + 1;
   const int i0 = 2 * (root - 1);
