@@ -173,8 +173,7 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
 // The root nearest MeshSpec::crease_fan_from_rim and, with a band, every second corner node
 // within it get a fan each; the lattice's nodes the blocks no longer hold are dropped.
 void Body::add_crease_fans(const std::vector<double>& theta) {
-  const double inner_radius = spec_.R - 0.5 * spec_.h;
-  const auto from_rim = [&](int e) { return inner_radius * (spec_.phi - theta[2 * e]); };
+  const auto from_rim = [&](int e) { return inner_arc_from_rim(spec_, theta[2 * e]); };
   int root = -1;  // the element index along whose first corner is the root
   double best = std::numeric_limits<double>::infinity();
   for (int e = 1; e < spec_.along; ++e) {
@@ -271,8 +270,7 @@ void Body::add_fan_block(int root, const std::vector<double>& theta) {
 
 double Body::crease_root_from_rim() const {
   if (crease_root_ < 0) return std::numeric_limits<double>::quiet_NaN();
-  const double theta = std::atan2(nodes_.r[crease_root_], -nodes_.z[crease_root_]);
-  return (spec_.R - 0.5 * spec_.h) * (spec_.phi - theta);
+  return inner_arc_from_rim(spec_, std::atan2(nodes_.r[crease_root_], -nodes_.z[crease_root_]));
 }
 
 // Renumbers the nodes that some element holds, in their order, and drops the rest (the lattice's

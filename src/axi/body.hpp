@@ -160,6 +160,12 @@ void Body::for_each_inner_point(const Points& x, Visit visit) const {
   }
 }
 
+// The arc length from the rim along the reference inner surface (radius R - h/2) to the polar
+// angle theta [m].
+inline double inner_arc_from_rim(const MeshSpec& spec, double theta) {
+  return (spec.R - 0.5 * spec.h) * (spec.phi - theta);
+}
+
 // The polar angles of the element corners along the meridian, 0 to spec.phi (along + 1 values).
 std::vector<double> corner_angles(const MeshSpec& spec);
 

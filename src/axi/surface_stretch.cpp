@@ -50,7 +50,6 @@ std::vector<SurfaceStretch> inner_surface_stretches(const Body& body, const Poin
   }
   const auto& spec = body.spec();
   const auto& X = body.nodes();
-  const double radius = spec.R - 0.5 * spec.h;
   std::vector<SurfaceStretch> out;
   out.reserve(static_cast<std::size_t>(spec.along * per_element));
   for (int e = 0; e < spec.along; ++e) {
@@ -77,7 +76,7 @@ std::vector<SurfaceStretch> inner_surface_stretches(const Body& body, const Poin
         R0 += La[a] * X.r[el[3 * a]];
         Z0 += La[a] * X.z[el[3 * a]];
       }
-      st.from_rim = radius * (spec.phi - std::atan2(R0, -Z0));
+      st.from_rim = inner_arc_from_rim(spec, std::atan2(R0, -Z0));
       out.push_back(st);
     }
   }
