@@ -5,7 +5,7 @@
 //
 //   build/static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V_OVER_V0] [--grading G]
 //                       [--end-dp DP_OVER_P_ZOELLY] [--crease-fan FROM_RIM_mm [--crease-fan-band
-//                       mm]] THROUGH ALONG [R_mm h_mm [PHI_deg [NU]]]
+//                       mm] | --fan-layer LAYERS] THROUGH ALONG [R_mm h_mm [PHI_deg [NU]]]
 #include "axi/static_branch.hpp"
 
 #include <fmt/format.h>
@@ -36,9 +36,12 @@ int run(int argc, char** argv) {
   std::vector<double> pos;
   double end_dp = std::numeric_limits<double>::quiet_NaN();
   double grading = 1.0, fan = 0.0, band = 0.0;
+  int fan_layer = 0;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--no-contacts") {
       o.contacts = false;
+    } else if (args[i] == "--fan-layer" && i + 1 < args.size()) {
+      fan_layer = std::stoi(args[++i]);
     } else if (args[i] == "--csv" && i + 1 < args.size()) {
       csv = args[++i];
     } else if (args[i] == "--step" && i + 1 < args.size()) {
@@ -60,7 +63,8 @@ int run(int argc, char** argv) {
   if (pos.size() < 2) {
     std::fprintf(stderr,
                  "usage: static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V/V0] "
-                 "[--grading G] [--end-dp DP] [--crease-fan FROM_RIM_mm [--crease-fan-band mm]] "
+                 "[--grading G] [--end-dp DP] [--crease-fan FROM_RIM_mm [--crease-fan-band mm] | "
+                 "--fan-layer LAYERS] "
                  "THROUGH ALONG [R_mm h_mm "
                  "[PHI_deg [NU]]]\n");
     return 2;
@@ -76,7 +80,8 @@ int run(int argc, char** argv) {
                         .along = static_cast<int>(pos[1]),
                         .rim_grading = grading,
                         .crease_fan_from_rim = fan,
-                        .crease_fan_band = band},
+                        .crease_fan_band = band,
+                        .fan_layer = fan_layer},
                        fem::Material::from_young(kE, nu, kRho));
   const double pc = theory::zoelly_pressure(kE, h, R, nu);
   o.p_ref = pc;
@@ -103,6 +108,10 @@ int run(int argc, char** argv) {
       "{:.1f} s, rim grading {:g}\n",
       1e3 * R, 1e3 * h, phi * 180 / std::numbers::pi, nu, body.spec().along, body.spec().through,
       o.contacts ? "on" : "off", b.points.size(), wall, grading);
+  if (fan_layer > 0) {
+    fmt::print("  fan layer of {} layers: three elements at every inner corner node, {} elements\n",
+               fan_layer, body.num_elements());
+  }
   if (body.crease_root() >= 0) {
     fmt::print("  crease fan at the inner node {:.4g} mm from the rim ({} fans)\n",
                1e3 * body.crease_root_from_rim(), body.crease_fans());
@@ -118,7 +127,10 @@ int run(int argc, char** argv) {
   fmt::print("  {}\n", b.reached_end       ? "reached the end"
                        : b.snaps_below_end ? "stopped at a maximum of dp below the end's: a snap "
                                              "under pressure control"
-                                           : b.stop_reason);
+                       : b.loses_stability_below_end
+                           ? "stopped at the last stable point below the end's dp: the next is "
+                             "unstable under pressure control"
+                           : b.stop_reason);
   const auto biot = fem::biot_instability(body.material());
   fmt::print(
       "  the inner surface's crease measure at the last point: {:.4g} at {:.3g} mm from the rim "

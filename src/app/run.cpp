@@ -345,6 +345,9 @@ void check_same_numerics(const nlohmann::json& before_in, const nlohmann::json& 
   if (!before.contains("bulk_integration")) {
     before["bulk_integration"] = before.value("model", "3d") == "axisymmetric" ? "reduced" : "full";
   }
+  if (before.value("model", "3d") == "axisymmetric" && !before.contains("fan_layer")) {
+    before["fan_layer"] = 0;
+  }
   std::string differ;
   for (const auto& [key, value] : before.items()) {
     if (key == "end_time") continue;

@@ -49,6 +49,11 @@ RunCommand::RunCommand(CLI::App& app) {
                    "default, the paper's element) or reduced (3D: at each element's centroid; "
                    "axisymmetric: 2 x 2 points, its default); overrides numerics.bulk_integration")
       ->check(CLI::IsMember({"full", "reduced"}));
+  cmd_->add_option("--fan-layer", fan_layer_,
+                   "axisymmetric: tile the first 1 or 2 layers of elements through h so that "
+                   "every inner corner node is a crease's root (three elements at each; 0: none); "
+                   "overrides numerics.fan_layer")
+      ->check(CLI::Range(0, 2));
   cmd_->add_option("--output", options_.output,
                    "folder for the results (must not exist or be empty; default "
                    "runs/<case>-<date-time>)");
@@ -72,7 +77,7 @@ bool RunCommand::parsed() const { return cmd_->parsed(); }
 
 bool RunCommand::sets_up_a_run(const std::map<std::string, std::string>& values) const {
   return !case_.case_file.empty() || !values.empty() || !resolution_.empty() || !model_.empty() ||
-         !bulk_.empty() || !options_.output.empty();
+         !bulk_.empty() || fan_layer_ >= 0 || !options_.output.empty();
 }
 
 int RunCommand::run(std::ostream& out, std::ostream& err, const CliHooks& hooks) const {
@@ -100,6 +105,7 @@ int RunCommand::run(std::ostream& out, std::ostream& err, const CliHooks& hooks)
   if (const auto r = config::parse_resolution(resolution_)) c.numerics.resolution = *r;
   if (const auto m = config::parse_model(model_)) c.numerics.model = *m;
   if (const auto b = config::parse_bulk_integration(bulk_)) c.numerics.bulk_integration = *b;
+  if (fan_layer_ >= 0) c.numerics.fan_layer = fan_layer_;
   return run_simulation(c, options, out, err);
 }
 

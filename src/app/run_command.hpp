@@ -34,6 +34,7 @@ class RunCommand {
   CaseOptions case_;
   RunOptions options_;
   std::string resolution_, model_, bulk_;
+  int fan_layer_ = -1;
   std::string pause_at_;
   std::string reanalyze_;
 };

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 
 #include "axi/quadratic.hpp"
@@ -105,7 +106,17 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
       elements_.push_back(el);
     }
   }
+  if (spec.fan_layer < 0 || spec.fan_layer > std::min(2, spec.through)) {
+    throw std::invalid_argument(
+        fmt::format("a fan layer replaces 1 or 2 of the {} layers of elements through h, not {}",
+                    spec.through, spec.fan_layer));
+  }
+  if (spec.fan_layer > 0 && spec.crease_fan_from_rim > 0.0) {
+    throw std::invalid_argument(
+        "a fan layer makes every inner corner node a crease's root: give no crease fan with it");
+  }
   if (spec.crease_fan_from_rim > 0.0) add_crease_fans(theta);
+  if (spec.fan_layer > 0) add_fan_layer(theta);
 
   // Quadrature data, and the consistent mass's diagonal for the lumping.
   mass_.assign(nodes_.size(), 0.0);
@@ -197,6 +208,41 @@ void Body::add_crease_fans(const std::vector<double>& theta) {
   drop_unused_nodes();
 }
 
+namespace {
+
+using UV = std::array<double, 2>;
+
+// The nine nodes of a quadrilateral with corners c in the element's order (a, b) = (0, 0),
+// (2, 0), (2, 2), (0, 2), straight in lattice coordinates: node (a, b) at the bilinear
+// interpolation of the corners, its index from node_at.
+template <typename NodeAt>
+std::array<int, 9> quad_nodes(const std::array<UV, 4>& c, NodeAt node_at) {
+  std::array<int, 9> el{};
+  for (int a = 0; a < 3; ++a) {
+    for (int b = 0; b < 3; ++b) {
+      const double x = 0.5 * a, y = 0.5 * b;
+      UV uv{};
+      for (int k = 0; k < 2; ++k) {
+        uv[k] = (1 - x) * (1 - y) * c[0][k] + x * (1 - y) * c[1][k] + x * y * c[2][k] +
+                (1 - x) * y * c[3][k];
+      }
+      el[3 * a + b] = node_at(uv);
+    }
+  }
+  return el;
+}
+
+}  // namespace
+
+std::array<double, 2> Body::lattice_point(double u, double v,
+                                          const std::vector<double>& theta) const {
+  const int ni = 2 * spec_.along + 1, nj = 2 * spec_.through + 1;
+  const int lo = std::clamp(static_cast<int>(std::floor(u)), 0, ni - 2);
+  const double t = theta[lo] + (u - lo) * (theta[lo + 1] - theta[lo]);
+  const double s = spec_.R - 0.5 * spec_.h + spec_.h * v / (nj - 1);
+  return {s * std::sin(t), -s * std::cos(t)};
+}
+
 // The fan replaces the 2 x 2 block of elements whose inner-surface edge's middle corner is the
 // root P: in the block's lattice coordinates (u along, v through, 0..4 each) its corners are
 // A (0, 0), P (2, 0), B (4, 0), C (0, 2), D (4, 2), E (0, 4), M (2, 4), F (4, 4), and its
@@ -206,25 +252,16 @@ void Body::add_crease_fans(const std::vector<double>& theta) {
 // 60 degrees on square elements. The block's boundary, its edges' middle nodes included, is
 // the lattice's, so the fan conforms to the elements around it.
 void Body::add_fan_block(int root, const std::vector<double>& theta) {
-  const int ni = 2 * spec_.along + 1, nj = 2 * spec_.through + 1;
+  const int nj = 2 * spec_.through + 1;
   const int i0 = 2 * (root - 1);
-  const auto lattice_point = [&](double u, double v) {
-    const double i = i0 + u;
-    const int lo = std::min(static_cast<int>(std::floor(i)), ni - 2);
-    const double t = theta[lo] + (i - lo) * (theta[lo + 1] - theta[lo]);
-    const double s = spec_.R - 0.5 * spec_.h + spec_.h * v / (nj - 1);
-    return std::pair{s * std::sin(t), -s * std::cos(t)};
-  };
   // The rays from P: the lattice units' lengths along and through at P.
   const double along_unit = spec_.R * (theta[i0 + 4] - theta[i0]) / 4.0;
   const double through_unit = spec_.h / (nj - 1);
   const double pd = std::atan2(through_unit, along_unit);  // PD's angle from the surface
   const double ray = 0.5 * (pd + 0.5 * std::numbers::pi);
   const double du = 1.6 * through_unit / std::tan(ray) / along_unit;
-  using UV = std::array<double, 2>;
   const UV A{0, 0}, P{2, 0}, B{4, 0}, C{0, 2}, D{4, 2}, E{0, 4}, M{2, 4}, F{4, 4};
   const UV O1{2 - du, 1.6}, O2{2 + du, 1.6};
-  // Corners in the element's order (a, b) = (0, 0), (2, 0), (2, 2), (0, 2).
   const std::array<std::array<UV, 4>, 5> quads{
       {{A, P, O1, C}, {P, O2, M, O1}, {P, B, D, O2}, {C, O1, M, E}, {O2, D, F, M}}};
   std::vector<std::pair<UV, int>> created;
@@ -237,27 +274,14 @@ void Body::add_fan_block(int root, const std::vector<double>& theta) {
     for (const auto& [at, id] : created) {
       if (std::abs(at[0] - uv[0]) < 1e-9 && std::abs(at[1] - uv[1]) < 1e-9) return id;
     }
-    const auto [r, z] = lattice_point(uv[0], uv[1]);
+    const auto [r, z] = lattice_point(i0 + uv[0], uv[1], theta);
     nodes_.r.push_back(r);
     nodes_.z.push_back(z);
     created.emplace_back(uv, static_cast<int>(nodes_.r.size()) - 1);
     return created.back().second;
   };
   std::array<std::array<int, 9>, 5> fan{};
-  for (int q = 0; q < 5; ++q) {
-    const auto& c = quads[q];
-    for (int a = 0; a < 3; ++a) {
-      for (int b = 0; b < 3; ++b) {
-        const double x = 0.5 * a, y = 0.5 * b;  // bilinear weights over the corners
-        UV uv{};
-        for (int k = 0; k < 2; ++k) {
-          uv[k] = (1 - x) * (1 - y) * c[0][k] + x * (1 - y) * c[1][k] + x * y * c[2][k] +
-                  (1 - x) * y * c[3][k];
-        }
-        fan[q][3 * a + b] = node_at(uv);
-      }
-    }
-  }
+  for (int q = 0; q < 5; ++q) fan[q] = quad_nodes(quads[q], node_at);
   // The inner-surface elements keep their places (element e * through is e's inner one).
   const int T = spec_.through;
   elements_[static_cast<std::size_t>((root - 1) * T)] = fan[0];
@@ -266,6 +290,70 @@ void Body::add_fan_block(int root, const std::vector<double>& theta) {
   elements_[static_cast<std::size_t>(root * T + 1)] = fan[4];
   elements_.push_back(fan[1]);
   ++crease_fans_;
+}
+
+// The first `depth` layers (v from 0 to 2 depth in lattice units), column e from inner corner
+// b_e = (2e, 0) to b_(e+1), under the corners M_e = (2e, 2 depth): two new corners per inner
+// corner node, L_e = (2e - du, depth) and R_e = (2e + du, depth), and per column the elements
+// S_e = b_e b_(e+1) L_(e+1) R_e (on the inner surface), U_e = R_e L_(e+1) M_(e+1) M_e (under
+// the layers above) and, about each corner node between columns, the diamond
+// D_e = b_e R_e M_e L_e. b_e's corners are then S_(e-1)'s, D_e's and S_e's, the three about
+// 60 degrees where the elements are as long as thick (du at most 0.6: R_e and L_(e+1) stay
+// apart on long-and-thin ones). At the axis R_0 = (0, depth) and at the rim L_n = (2n, depth)
+// lie on the boundary, which takes the edge there that no element around could.
+void Body::add_fan_layer(const std::vector<double>& theta) {
+  const int n = spec_.along, T = spec_.through, nj = 2 * T + 1;
+  const int depth = spec_.fan_layer;
+  const double through_unit = spec_.h / (nj - 1);
+  std::vector<double> du(n + 1, 0.0);
+  for (int e = 1; e < n; ++e) {
+    const double along_unit = 0.5 * spec_.R * (theta[2 * e + 1] - theta[2 * e - 1]);
+    du[e] = std::min(0.6, std::tan(std::numbers::pi / 6.0) * depth * through_unit / along_unit);
+  }
+  std::map<std::pair<long long, long long>, int> created;
+  std::vector<std::pair<double, int>> on_axis, on_rim;  // (v, node) of new boundary nodes
+  const auto node_at = [&](const UV& uv) {
+    const double iu = std::round(uv[0]), iv = std::round(uv[1]);
+    if (std::abs(uv[0] - iu) < 1e-9 && std::abs(uv[1] - iv) < 1e-9) {
+      return static_cast<int>(iu) * nj + static_cast<int>(iv);
+    }
+    const std::pair key{std::llround(uv[0] * 1e6), std::llround(uv[1] * 1e6)};
+    if (const auto it = created.find(key); it != created.end()) return it->second;
+    const auto [r, z] = lattice_point(uv[0], uv[1], theta);
+    const int id = static_cast<int>(nodes_.r.size());
+    nodes_.r.push_back(uv[0] == 0.0 ? 0.0 : r);
+    nodes_.z.push_back(z);
+    created.emplace(key, id);
+    if (uv[0] == 0.0) on_axis.emplace_back(uv[1], id);
+    if (uv[0] == 2.0 * n) on_rim.emplace_back(uv[1], id);
+    return id;
+  };
+  const double mid = depth, top = 2.0 * depth;
+  const auto b = [](int e) { return UV{2.0 * e, 0.0}; };
+  const auto M = [&](int e) { return UV{2.0 * e, top}; };
+  const auto L = [&](int e) { return UV{2.0 * e - du[e], mid}; };
+  const auto R = [&](int e) { return UV{2.0 * e + du[e], mid}; };
+  for (int e = 0; e < n; ++e) {
+    const auto base = static_cast<std::size_t>(e * T);
+    elements_[base] = quad_nodes({b(e), b(e + 1), L(e + 1), R(e)}, node_at);
+    const auto under = quad_nodes({R(e), L(e + 1), M(e + 1), M(e)}, node_at);
+    if (depth == 2) {
+      elements_[base + 1] = under;
+    } else {
+      elements_.push_back(under);
+    }
+  }
+  for (int e = 1; e < n; ++e) elements_.push_back(quad_nodes({b(e), R(e), M(e), L(e)}, node_at));
+  // The new nodes on the axis and the rim face join those sets, in order through h.
+  const auto merge = [&](std::vector<int>& set, int i, std::vector<std::pair<double, int>> extra) {
+    for (int j = 0; j < nj; ++j) extra.emplace_back(j, i * nj + j);
+    std::sort(extra.begin(), extra.end());
+    set.clear();
+    for (const auto& [v, id] : extra) set.push_back(id);
+  };
+  merge(axis_, 0, on_axis);
+  merge(rim_, 2 * n, on_rim);
+  drop_unused_nodes();  // the lattice's nodes inside the layer that no element holds now
 }
 
 double Body::crease_root_from_rim() const {

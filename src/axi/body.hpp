@@ -48,6 +48,13 @@ struct MeshSpec {
   // And every second corner node within this arc length about that one [m]: a band of roots,
   // where the crease's place is known only to within it. 0: the one node.
   double crease_fan_band = 0.0;
+  // Every corner node of the inner surface a crease's root: the first fan_layer layers of
+  // elements through h (1 or 2; 0: none) tiled, column by column, into three 9-node elements
+  // (one on the inner surface, one under the layers above, one diamond about each corner node
+  // between columns), so that three elements meet at each inner corner node between the axis
+  // and the rim. The layer's ends lie on the axis and on the rim face, where the extra edge it
+  // needs is a boundary's. Not with crease_fan_from_rim.
+  int fan_layer = 0;
 };
 
 // Meridian positions (structure of arrays).
@@ -137,8 +144,13 @@ class Body {
   std::vector<int> axis_, rim_, outer_, inner_;
   int crease_root_ = -1, crease_fans_ = 0;
 
+  // A point of the lattice at fractional lattice coordinates (u along, v through; the nodes at
+  // integers), on the reference arcs.
+  [[nodiscard]] std::array<double, 2> lattice_point(double u, double v,
+                                                    const std::vector<double>& theta) const;
   void add_crease_fans(const std::vector<double>& theta);
   void add_fan_block(int root, const std::vector<double>& theta);
+  void add_fan_layer(const std::vector<double>& theta);
   void drop_unused_nodes();
 };
 

@@ -440,9 +440,18 @@ StaticBranch Tracer::run() {
       inverted_minimum = previous->v < 0.0;
     }
     if (turned_down) rise = 0;
+    const bool rising_to_end = rise == 1 && inverted_minimum && std::isfinite(o_.end_dp) &&
+                               s.q * o_.p_ref < o_.end_dp && s.v < 0.0;
     if (turned_down && inverted_minimum && previous->v < 0.0 && std::isfinite(o_.end_dp) &&
         previous->q * o_.p_ref < o_.end_dp) {
       b.snaps_below_end = true;
+      s = *previous;
+      b.points.pop_back();
+      break;
+    }
+    if (rising_to_end && !turned_up &&
+        !positive_definite(problem_.stiffness(x_, s.q * o_.p_ref), problem_.dofs())) {
+      b.loses_stability_below_end = true;
       s = *previous;
       b.points.pop_back();
       break;

@@ -57,7 +57,8 @@ struct BranchOptions {
   double min_step = 1e-5;    // below this the continuation gives up
   double end_volume = -1.0;  // stop once v = V / V0 falls below this
   // Or, past p_c and a minimum, on the inverted side (V < 0), stop once dp rises to end_dp [Pa]
-  // (or at a maximum below it that follows a minimum on the inverted side, snaps_below_end)
+  // (or at a maximum below it that follows a minimum on the inverted side, snaps_below_end, or
+  // where that segment's equilibria stop being stable, loses_stability_below_end)
   // (NaN: not used), and solve for the equilibrium at exactly end_dp (StaticBranch::state). Where
   // that minimum already lies above end_dp, the segment rising from it holds no equilibrium at
   // end_dp: the branch stops at its first point (StaticBranch::end_above, the state at that
@@ -90,6 +91,11 @@ struct StaticBranch {
   // (where the inner surface creases, the crease's nucleation, which is subcritical). The branch
   // stopped at that maximum.
   bool snaps_below_end = false;
+  // Or, on that segment below end_dp, the next point was no longer stable under pressure control
+  // without a maximum of dp: a bifurcation (where the inner surface wrinkles past its Biot
+  // instability, for one). The branch stopped at the last stable point, from which a shell under
+  // a rising suction leaves it in time.
+  bool loses_stability_below_end = false;
   std::string stop_reason;  // why it stopped, when it did not reach the end
   // The fold that stopped it, if one did (at the last point).
   std::optional<fem::FoldedElement> fold;

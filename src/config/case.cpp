@@ -119,6 +119,7 @@ constexpr std::string_view kModelKey = "model";
 constexpr std::string_view kBulkKey = "bulk_integration";
 constexpr std::string_view kLawKey = "law";
 constexpr std::string_view kMeshKey = "mesh";
+constexpr std::string_view kFanLayerKey = "fan_layer";
 constexpr std::string_view kTitleKey = "title";
 
 constexpr std::string_view kDefaultCase =
@@ -177,7 +178,8 @@ std::string keys_of(std::string_view table) {
     out += k.name;
   }
   if (table == "numerics")
-    out += fmt::format(", {}, {}, {}, {}", kModelKey, kResolutionKey, kLayersKey, kBulkKey);
+    out += fmt::format(", {}, {}, {}, {}, {}", kModelKey, kResolutionKey, kLayersKey, kBulkKey,
+                       kFanLayerKey);
   if (table == "shell") out += fmt::format(", {}", kMeshKey);
   if (table == "material") out += fmt::format(", {}", kLawKey);
   return out;
@@ -309,6 +311,16 @@ class Reader {
         std::error_code ec;
         const auto absolute = std::filesystem::absolute(p, ec);
         c.shell.mesh = (ec ? p : absolute).lexically_normal().string();
+        continue;
+      }
+      if (table_name == "numerics" && name == kFanLayerKey) {
+        const auto* i = node.as_integer();
+        if (i == nullptr || i->get() < 0 || i->get() > 2) {
+          fail(key.source(),
+               "numerics.fan_layer must be 0, 1 or 2: the layers of elements through h tiled so "
+               "that every inner corner node is a crease's root (0: none)");
+        }
+        c.numerics.fan_layer = static_cast<int>(i->get());
         continue;
       }
       if (table_name == "numerics" && name == kLayersKey) {
@@ -490,6 +502,9 @@ Case build(const Reader& r, Case c) {
               c.numerics.contact_band);
   if (c.numerics.grid_spacing) positive("numerics", "grid_spacing", *c.numerics.grid_spacing);
   if (c.numerics.crease_fan) positive("numerics", "crease_fan", *c.numerics.crease_fan);
+  check(!(c.numerics.fan_layer.value_or(0) > 0 && c.numerics.crease_fan),
+        "numerics.fan_layer makes every inner corner node a crease's root: give no "
+        "numerics.crease_fan with it");
   if (c.numerics.crease_fan_band) {
     positive("numerics", "crease_fan_band", *c.numerics.crease_fan_band);
     check(c.numerics.crease_fan.has_value(),
@@ -621,6 +636,9 @@ std::string to_toml(const Case& c) {
   }
   if (c.numerics.bulk_integration) {
     numerics.insert("bulk_integration", std::string(to_string(*c.numerics.bulk_integration)));
+  }
+  if (c.numerics.fan_layer) {
+    numerics.insert("fan_layer", static_cast<std::int64_t>(*c.numerics.fan_layer));
   }
   if (c.numerics.elements_through_thickness) {
     numerics.insert("elements_through_thickness",

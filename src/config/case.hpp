@@ -140,7 +140,10 @@ struct Numerics {
   std::optional<double> crease_fan;  // [m]
   // And every second inner corner node within this arc length about it (a band of roots).
   std::optional<double> crease_fan_band;  // [m]
-  std::optional<double> grid_spacing;     // [m]; from the resolution preset (a fraction of h)
+  // Axisymmetric: every inner corner node a crease's root, the first 1 or 2 layers of elements
+  // through h tiled into fans (axi::MeshSpec::fan_layer); the structured mesh when absent or 0.
+  std::optional<int> fan_layer;
+  std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)
   // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
   // 1, fine 2; axisymmetric: 2, 4, 8).
   std::optional<int> elements_through_thickness;

@@ -28,7 +28,8 @@ axi::Body make_body(const config::Case& c, const Numerics& n) {
                                  .along = n.axi_along,
                                  .reduced_bulk = n.reduced_bulk,
                                  .crease_fan_from_rim = n.axi_crease_fan,
-                                 .crease_fan_band = n.axi_crease_fan_band},
+                                 .crease_fan_band = n.axi_crease_fan_band,
+                                 .fan_layer = n.axi_fan_layer},
                    body_material(c.material));
 }
 
@@ -55,6 +56,12 @@ std::string AxiShell::describe() const {
       s.reduced_bulk ? "at 2 x 2 Gauss points, the rest at 3 x 3 (selective, free of locking)"
                      : "at 3 x 3 Gauss points with the rest (numerics.bulk_integration = \"full\")",
       1e6 * dynamics_.dt(), kAxiStabilityFraction, omega_max_);
+  if (s.fan_layer > 0) {
+    text += fmt::format(
+        "  fan layer   the first {} layer{} through h tiled so that three elements meet at every "
+        "inner corner node, where a crease may root (numerics.fan_layer): {} elements in all\n",
+        s.fan_layer, s.fan_layer > 1 ? "s" : "", body_.num_elements());
+  }
   if (body_.crease_root() >= 0) {
     text += fmt::format(
         "  crease fan  a crease's root at the inner surface's node {:.3g} mm from the rim, three "
@@ -80,6 +87,7 @@ nlohmann::json AxiShell::numerics_json() const {
       {"crease_fan_from_rim",
        body_.crease_root() < 0 ? nlohmann::json() : nlohmann::json(body_.crease_root_from_rim())},
       {"crease_fans", body_.crease_fans()},
+      {"fan_layer", s.fan_layer},
       {"dt", dynamics_.dt()},
       {"omega_max", omega_max_}};
 }
@@ -117,7 +125,8 @@ std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(
   }
   return QuasiStaticBuckle{.reached = b.reached_end,
                            .foot = b.end_above,
-                           .snaps = b.snaps_below_end,
+                           .snaps = b.snaps_below_end || b.loses_stability_below_end,
+                           .loses_stability = b.loses_stability_below_end,
                            .stable = b.stable,
                            .dp = last.dp,
                            .p_c = b.p_c,

@@ -51,6 +51,19 @@ Numerics resolve_numerics(const config::Case& c) {
         "numerics.model = \"axisymmetric\"",
         c.source));
   }
+  if (c.numerics.fan_layer.value_or(0) > 0 && n.model != config::Model::Axisymmetric) {
+    throw config::CaseError(fmt::format(
+        "{}: numerics.fan_layer tiles the axisymmetric mesh's first layers: run it with "
+        "numerics.model = \"axisymmetric\"",
+        c.source));
+  }
+  n.axi_fan_layer = c.numerics.fan_layer.value_or(0);
+  if (n.axi_fan_layer > 0 && c.numerics.crease_fan) {
+    throw config::CaseError(
+        fmt::format("{}: numerics.fan_layer makes every inner corner node a crease's root: give no "
+                    "numerics.crease_fan with it",
+                    c.source));
+  }
   n.axi_crease_fan = c.numerics.crease_fan.value_or(0.0);
   n.axi_crease_fan_band = c.numerics.crease_fan_band.value_or(0.0);
   // The plate acts on a particle whose stencil holds a plate node, i.e. from up to 1.5 cells
@@ -347,8 +360,9 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
   // At the foot of an inverted segment above delta_p_j (its minimum, p_hold, lies above it) the
   // state is a limit point's neighbour: the lowered suction of phase 2 decides what follows.
   // Where the segment turns down at a maximum below delta_p_j (a limit point: a subcritical
-  // crease's nucleation), the shell snaps under the suction there: phase 2's dynamics take it
-  // from that state, as the dynamics take the natural state through buckling.
+  // crease's nucleation), or where its equilibria stop being stable (a bifurcation), the shell
+  // snaps under the suction there: phase 2's dynamics take it from that state, as the dynamics
+  // take the natural state through buckling.
   const bool foot = qs.foot;
   if (!(qs.reached || qs.snaps) || !(qs.stable || foot || qs.snaps) || !inverted()) {
     prep.message = fmt::format(
@@ -365,8 +379,9 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
                  "delta_p_j",
                  qs.dp, qs.dp / pc)
       : qs.snaps ? fmt::format(
-                       "to the maximum of its inverted segment at {:.0f} Pa ({:.3f} p_c), below "
+                       "to the {} of its inverted segment at {:.0f} Pa ({:.3f} p_c), below "
                        "delta_p_j, to snap from there in time",
+                       qs.loses_stability ? "last state stable under pressure control" : "maximum",
                        qs.dp, qs.dp / pc)
                  : fmt::format("to its inverted equilibrium at delta_p_j, {:.0f} Pa ({:.2f} p_c)",
                                qs.dp, qs.dp / pc);

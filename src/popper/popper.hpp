@@ -39,10 +39,11 @@ struct Numerics {
   int axi_along = 0;                            // axisymmetric: elements along the meridian
   double axi_crease_fan = 0.0;                  // axisymmetric: crease root from the rim [m]
   double axi_crease_fan_band = 0.0;             // axisymmetric: roots within this band [m]
-  double time_step_factor = kTimeStepFactor;    // elastic time step factor (3D)
-  double probe_interval = 1e-4;                 // [s] between samples of the time series
-  double snapshot_interval = 5e-3;              // [s] between VTU snapshots
-  double checkpoint_interval = 0.02;            // [s] between checkpoints of a run
+  int axi_fan_layer = 0;  // axisymmetric: layers tiled so that every inner corner node is a root
+  double time_step_factor = kTimeStepFactor;  // elastic time step factor (3D)
+  double probe_interval = 1e-4;               // [s] between samples of the time series
+  double snapshot_interval = 5e-3;            // [s] between VTU snapshots
+  double checkpoint_interval = 0.02;          // [s] between checkpoints of a run
   // [s] after the release: the run ends at the apex of the flight, at the latest here (the
   // case's numerics.end_time, or default_end(case).cap).
   double end_time = 0.0;

@@ -62,8 +62,9 @@ class ShellModel {
   // at rest in the equilibrium of suction dp. p_ref: the pressure scale (Zoelly's p_c). Where the
   // inverted segment's lowest suction lies above dp, the shell is left at the foot of that
   // segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction from there; where the
-  // segment turns down at a maximum on the way up to dp, at that maximum, for the dynamics to
-  // snap it under that suction and raise the suction from there. Throws
+  // segment turns down at a maximum on the way up to dp, or stops being stable on the way, at
+  // that maximum or its last stable state, for the dynamics to snap it under that suction and
+  // raise the suction from there. Throws
   // fem::FoldedElement when the branch folds an element before it gets there.
   struct QuasiStaticBuckle {
     bool reached = false;  // an end state was found (at dp, or at the foot above it)
@@ -71,6 +72,10 @@ class ShellModel {
     // Or at a maximum of the inverted segment below dp, where the shell snaps under that
     // suction (axi::StaticBranch::snaps_below_end).
     bool snaps = false;
+    // With snaps: not at a maximum but at the last stable state of that segment, past which its
+    // equilibria are unstable under pressure control (axi::StaticBranch::
+    // loses_stability_below_end).
+    bool loses_stability = false;
     bool stable = false;  // and is stable under pressure control
     double dp = 0.0;      // the suction of that end state [Pa]
     // The branch's buckling maximum, its lowest suction after it (below which no buckled state

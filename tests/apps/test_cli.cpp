@@ -690,6 +690,27 @@ TEST(Cli, ACreaseFanIsPrintedAndKeptInTheSummaryAndRefusedByThe3DModel) {
   EXPECT_NE(three_d.err.find("numerics.crease_fan"), std::string::npos) << three_d.err;
 }
 
+TEST(Cli, AFanLayerIsPrintedAndKeptInTheSummaryAndRefusedByThe3DModel) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_fan_layer";
+  std::filesystem::remove_all(dir);
+  const auto r = run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--fan-layer",
+                      "1", "--end-time", "1ms", "--output", dir.string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("fan layer   the first 1 layer through h"), std::string::npos) << r.out;
+  std::ifstream in(dir / "summary.json");
+  const auto n = nlohmann::json::parse(in)["numerics"];
+  EXPECT_EQ(n["fan_layer"].get<int>(), 1);
+  // The coarse cap's 2 x 21 elements, and per column two more less the axis's diamond.
+  EXPECT_EQ(n["elements"].get<int>(), 2 * 21 + 2 * 21 - 1);
+  const auto deep = run({"run", "--model", "axisymmetric", "--fan-layer", "3", "--end-time", "1ms",
+                         "--output", (dir / "deep").string()});
+  EXPECT_EQ(deep.code, kExitBadInput);
+  const auto three_d =
+      run({"run", "--fan-layer", "1", "--end-time", "1ms", "--output", (dir / "3d").string()});
+  EXPECT_EQ(three_d.code, kExitBadInput);
+  EXPECT_NE(three_d.err.find("numerics.fan_layer"), std::string::npos) << three_d.err;
+}
+
 TEST(Cli, RunSaysWhereALinkedOutputFolderReallyIs) {
   const auto base = std::filesystem::temp_directory_path() / "snapjump_cli_linked_output";
   std::filesystem::remove_all(base);

@@ -273,6 +273,20 @@ TEST(CaseFile, ACreaseFanIsALengthOfTheAxisymmetricMesh) {
                {"numerics.crease_fan_band", "give both"});
 }
 
+TEST(CaseFile, AFanLayerIsZeroOneOrTwoLayersOfTheAxisymmetricMesh) {
+  const auto c =
+      parse_case(kMinimal + "[numerics]\nmodel = \"axisymmetric\"\nfan_layer = 2\n", "case.toml");
+  ASSERT_TRUE(c.numerics.fan_layer.has_value());
+  EXPECT_EQ(*c.numerics.fan_layer, 2);
+  EXPECT_FALSE(parse_case(kMinimal, "case.toml").numerics.fan_layer.has_value());
+  for (const auto* bad : {"3", "-1", "true", "\"2\"", "1.5"}) {
+    expect_error(kMinimal + "[numerics]\nfan_layer = " + bad + "\n",
+                 {"numerics.fan_layer must be 0, 1 or 2"});
+  }
+  expect_error(kMinimal + "[numerics]\nfan_layer = 1\ncrease_fan = \"2 mm\"\n",
+               {"numerics.fan_layer", "numerics.crease_fan"});
+}
+
 TEST(CaseFile, TheLawIsNeoHookeanUnlessGentWithItsLockingValue) {
   EXPECT_EQ(parse_case(kMinimal, "case.toml").material.law, Law::NeoHookean);
   const auto gent =

@@ -43,6 +43,22 @@ TEST(Numerics, ACreaseFanIsTheAxisymmetricModels) {
   EXPECT_EQ(resolve_numerics(c).axi_crease_fan, 2e-3);
 }
 
+// A fan layer belongs to the axisymmetric mesh too, and not with a crease fan.
+TEST(Numerics, AFanLayerIsTheAxisymmetricModels) {
+  auto c = config::default_case();
+  c.numerics.fan_layer = 1;
+  EXPECT_THROW((void)resolve_numerics(c), config::CaseError);
+  c.numerics.model = config::Model::Axisymmetric;
+  EXPECT_EQ(resolve_numerics(c).axi_fan_layer, 1);
+  c.numerics.crease_fan = 2e-3;
+  try {
+    (void)resolve_numerics(c);
+    FAIL() << "a fan layer was taken with a crease fan";
+  } catch (const config::CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("numerics.fan_layer"), std::string::npos) << e.what();
+  }
+}
+
 // Without numerics.end_time a run goes to the apex of its flight, capped well past the apexes on
 // record: the default popper's comes 0.69 s after the release (coarse axisymmetric), and the
 // (30, 1.0) mm shell at 0.08 N still rises 1.6 s after it (docs/popper.md). A cap the case sets
