@@ -251,6 +251,9 @@ class Tracer {
   Points x_;
   double V0_;
   double force_scale_ = 0.0;
+  // The stiffness at fixed dp of the corrector's last iteration, one Newton correction (below
+  // the tolerance) from the point it converged to: what the stability check factorises.
+  Triplets last_stiffness_;
 };
 
 std::optional<int> Tracer::correct(State& s, const Arc& arc) {
@@ -270,6 +273,7 @@ std::optional<int> Tracer::correct(State& s, const Arc& arc) {
     if (!r.allFinite()) return std::nullopt;
     if (it > 0 && r.norm() <= o_.tolerance * force_scale_ && std::abs(c) <= 1e-12) return it;
     auto t = problem_.stiffness(x_, s.q * o_.p_ref);
+    last_stiffness_ = t;
     const Vec g = problem_.volume_gradient(x_);
     for (int i = 0; i < n; ++i) {
       t.emplace_back(i, n, o_.p_ref * g[i]);                              // d r / d q
@@ -449,8 +453,7 @@ StaticBranch Tracer::run() {
       b.points.pop_back();
       break;
     }
-    if (rising_to_end && !turned_up &&
-        !positive_definite(problem_.stiffness(x_, s.q * o_.p_ref), problem_.dofs())) {
+    if (rising_to_end && !turned_up && !positive_definite(last_stiffness_, problem_.dofs())) {
       b.loses_stability_below_end = true;
       s = *previous;
       b.points.pop_back();
