@@ -10,7 +10,7 @@
 namespace snapjump::app {
 
 std::string buckling_hint(const std::optional<popper::ReverseSnap>& b, const std::string& why,
-                          double pc, double buckle_factor) {
+                          double pc, double buckle_factor, bool run_followed_a_branch) {
   if (!b) return fmt::format("the axisymmetric branch's p_c could not be computed: {}", why);
   if (!std::isfinite(b->p_c)) {
     return fmt::format(
@@ -24,6 +24,11 @@ std::string buckling_hint(const std::optional<popper::ReverseSnap>& b, const std
       b->p_c, b->p_c / pc);
   if (b->p_c > buckle_factor * pc) {
     return at + ", beyond the preparation's suction: a thinner or deeper cap buckles within it";
+  }
+  if (run_followed_a_branch) {
+    return at +
+           ", within the preparation's suction: the run's own branch, on the run's mesh, stopped "
+           "before the inverted state, for the reason its preparation line gives";
   }
   return at +
          ", within the preparation's suction: the discretisation kept the shell from "
@@ -80,7 +85,8 @@ std::vector<std::string> preparation_hints(const config::Case& c, const popper::
         fmt::format("Zoelly's p_c of the case is {:.0f} Pa (snapjump predict); the preparation "
                     "raised the suction to {:.3g} p_c = {:.0f} Pa",
                     pc, buckle_factor, buckle_factor * pc));
-    hints.push_back(buckling_hint(branch, why, pc, buckle_factor));
+    hints.push_back(buckling_hint(branch, why, pc, buckle_factor,
+                                  c.numerics.model == config::Model::Axisymmetric));
   }
   const auto r = c.numerics.resolution;
   hints.push_back(r == config::Resolution::Fine

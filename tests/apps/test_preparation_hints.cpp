@@ -37,6 +37,19 @@ TEST(PreparationHints, AboveItASnapBackOnThePlateIsTheNetWeights) {
   EXPECT_FALSE(has(h, "discretisation")) << h;
 }
 
+// A cap whose branch buckles within the preparation's suction and still did not invert: in 3D
+// the discretisation (its ramp in time) kept it; the axisymmetric run followed a branch of its
+// own, whose stop its preparation line names.
+TEST(PreparationHints, ABucklingWithinTheSuctionPointsToWhatStoppedTheRun) {
+  const auto three_d = buckling_hint(default_branch(), "", 6896.0, 1.4, false);
+  EXPECT_TRUE(has(three_d, "the discretisation kept the shell from inverting")) << three_d;
+  const auto axi = buckling_hint(default_branch(), "", 6896.0, 1.4, true);
+  EXPECT_TRUE(has(axi, "the run's own branch, on the run's mesh, stopped")) << axi;
+  EXPECT_FALSE(has(axi, "discretisation")) << axi;
+  const auto beyond = buckling_hint(default_branch(), "", 6896.0, 0.9, true);
+  EXPECT_TRUE(has(beyond, "beyond the preparation's suction")) << beyond;
+}
+
 TEST(PreparationHints, ABranchThatCouldNotBeComputedSaysWhy) {
   const auto h = holding_hint(std::nullopt, "no mesh", 6896.0, 3448.0, true, 0.48);
   EXPECT_TRUE(has(h, "could not be computed: no mesh")) << h;
