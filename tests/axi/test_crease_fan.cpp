@@ -11,6 +11,7 @@
 
 #include "axi/body.hpp"
 #include "fem/fold_check.hpp"
+#include "mesh_checks.hpp"
 
 namespace snapjump::axi {
 namespace {
@@ -93,55 +94,8 @@ TEST(CreaseFan, ItsElementsPassThePatchTest) {
     auto s = spec(1.5e-3, 4, along);
     s.reduced_bulk = false;
     const auto b = body(s);
-    std::vector<char> boundary(b.num_nodes(), 0);
-    for (const auto* set : {&b.axis(), &b.rim(), &b.outer(), &b.inner()}) {
-      for (int a : *set) boundary[a] = 1;
-    }
-    auto x = b.nodes();
-    for (std::size_t a = 0; a < x.size(); ++a) {
-      x.r[a] *= 1.01;
-      x.z[a] *= 1.01;
-    }
-    Points f;
-    b.internal_forces(x, f);
-    double largest = 0.0, inside = 0.0;
-    for (std::size_t a = 0; a < f.size(); ++a) {
-      const double m = std::hypot(f.r[a], f.z[a]);
-      largest = std::max(largest, m);
-      if (!boundary[a]) inside = std::max(inside, m);
-    }
-    EXPECT_LT(inside, 1e-9 * largest);
+    EXPECT_LT(mesh_checks::patch_test_residual(b), 1e-9);
   }
-}
-
-// The closing crease as a closed form: about the root P, in its tangent (along the meridian)
-// and normal (into the shell) frame, the polar angle theta in [0, pi] of the material goes to
-// pi/2 + k(rho) (theta - pi/2), k = `closing` within `r1` of P, 1 beyond `r2`, linear between.
-// Its meridian det F is k(rho) > 0 everywhere, so a fold found is the mesh's; k = 2 closes the
-// crease (the surface turned through 180 degrees at P).
-Points close_crease(const Body& b, int root, double closing, double r1, double r2) {
-  const auto& X = b.nodes();
-  const double px = X.r[root], pz = X.z[root];
-  const double angle = std::atan2(px, -pz);  // the root's polar angle about the centre
-  const double tr = std::cos(angle), tz = std::sin(angle);   // along the meridian, to the rim
-  const double nr = std::sin(angle), nz = -std::cos(angle);  // outwards, into the shell
-  auto x = X;
-  for (std::size_t a = 0; a < x.size(); ++a) {
-    const double dr = X.r[a] - px, dz = X.z[a] - pz;
-    const double u = dr * tr + dz * tz, v = dr * nr + dz * nz;
-    const double rho = std::hypot(u, v);
-    if (rho >= r2 || rho == 0.0) continue;
-    const double k = rho <= r1 ? closing : closing + (1.0 - closing) * (rho - r1) / (r2 - r1);
-    // The inner surface curves away from its tangent at P: its points lie just outside
-    // [0, pi], and the angle is taken on the far side of the cavity's normal -n.
-    double theta = std::atan2(v, u);
-    if (theta < -0.5 * kPi) theta += 2.0 * kPi;
-    const double th = 0.5 * kPi + k * (theta - 0.5 * kPi);
-    const double u2 = rho * std::cos(th), v2 = rho * std::sin(th);
-    x.r[a] = px + u2 * tr + v2 * nr;
-    x.z[a] = pz + u2 * tz + v2 * nz;
-  }
-  return x;
 }
 
 TEST(CreaseFan, HoldsACreaseClosedToWhereTwoElementsFold) {
@@ -158,13 +112,14 @@ TEST(CreaseFan, HoldsACreaseClosedToWhereTwoElementsFold) {
   ASSERT_GE(root, 0);
   // Closing within 0.2 mm of the root (the elements are 0.5 mm), opening out to 0.6 mm.
   const double r1 = 0.2e-3, r2 = 0.6e-3;
-  EXPECT_NO_THROW(plain.check_folds(close_crease(plain, root, 1.7, r1, r2)));
-  EXPECT_NO_THROW(fan.check_folds(close_crease(fan, fan.crease_root(), 1.7, r1, r2)));
+  EXPECT_NO_THROW(plain.check_folds(mesh_checks::close_crease(plain, root, 1.7, r1, r2)));
+  EXPECT_NO_THROW(fan.check_folds(mesh_checks::close_crease(fan, fan.crease_root(), 1.7, r1, r2)));
   // The surface turned through 144 degrees: the structured elements' corners at the root
   // (162 degrees each) fold them between their nodes.
-  EXPECT_THROW(plain.check_folds(close_crease(plain, root, 1.8, r1, r2)), fem::FoldedElement);
+  EXPECT_THROW(plain.check_folds(mesh_checks::close_crease(plain, root, 1.8, r1, r2)),
+               fem::FoldedElement);
   // Closed, the surface turned through 180 degrees.
-  EXPECT_NO_THROW(fan.check_folds(close_crease(fan, fan.crease_root(), 2.0, r1, r2)));
+  EXPECT_NO_THROW(fan.check_folds(mesh_checks::close_crease(fan, fan.crease_root(), 2.0, r1, r2)));
 }
 
 TEST(CreaseFan, ANodeItCannotUseIsRefused) {

@@ -12,6 +12,7 @@
 
 #include "axi/body.hpp"
 #include "fem/fold_check.hpp"
+#include "mesh_checks.hpp"
 
 namespace snapjump::axi {
 namespace {
@@ -81,53 +82,8 @@ TEST(FanLayer, ItsElementsPassThePatchTest) {
     auto s = spec(depth, 4, along);
     s.reduced_bulk = false;
     const auto b = body(s);
-    std::vector<char> boundary(b.num_nodes(), 0);
-    for (const auto* set : {&b.axis(), &b.rim(), &b.outer(), &b.inner()}) {
-      for (int a : *set) boundary[a] = 1;
-    }
-    auto x = b.nodes();
-    for (std::size_t a = 0; a < x.size(); ++a) {
-      x.r[a] *= 1.01;
-      x.z[a] *= 1.01;
-    }
-    Points f;
-    b.internal_forces(x, f);
-    double largest = 0.0, inside = 0.0;
-    for (std::size_t a = 0; a < f.size(); ++a) {
-      const double m = std::hypot(f.r[a], f.z[a]);
-      largest = std::max(largest, m);
-      if (!boundary[a]) inside = std::max(inside, m);
-    }
-    EXPECT_LT(inside, 1e-9 * largest);
+    EXPECT_LT(mesh_checks::patch_test_residual(b), 1e-9);
   }
-}
-
-// The closing crease as a closed form: about the root P, in its tangent (along the meridian)
-// and normal (into the shell) frame, the polar angle theta in [0, pi] of the material goes to
-// pi/2 + k(rho) (theta - pi/2), k = `closing` within `r1` of P, 1 beyond `r2`, linear between.
-// Its meridian det F is k(rho) > 0 everywhere, so a fold found is the mesh's; k = 2 closes the
-// crease (the surface turned through 180 degrees at P).
-Points close_crease(const Body& b, int root, double closing, double r1, double r2) {
-  const auto& X = b.nodes();
-  const double px = X.r[root], pz = X.z[root];
-  const double angle = std::atan2(px, -pz);
-  const double tr = std::cos(angle), tz = std::sin(angle);
-  const double nr = std::sin(angle), nz = -std::cos(angle);
-  auto x = X;
-  for (std::size_t a = 0; a < x.size(); ++a) {
-    const double dr = X.r[a] - px, dz = X.z[a] - pz;
-    const double u = dr * tr + dz * tz, v = dr * nr + dz * nz;
-    const double rho = std::hypot(u, v);
-    if (rho >= r2 || rho == 0.0) continue;
-    const double k = rho <= r1 ? closing : closing + (1.0 - closing) * (rho - r1) / (r2 - r1);
-    double theta = std::atan2(v, u);
-    if (theta < -0.5 * kPi) theta += 2.0 * kPi;
-    const double th = 0.5 * kPi + k * (theta - 0.5 * kPi);
-    const double u2 = rho * std::cos(th), v2 = rho * std::sin(th);
-    x.r[a] = px + u2 * tr + v2 * nr;
-    x.z[a] = pz + u2 * tz + v2 * nz;
-  }
-  return x;
 }
 
 // Every inner corner node from 0.5 to 4 mm from the rim, on square (4 x 70) and tall (4 x 140)
@@ -139,8 +95,8 @@ TEST(FanLayer, HoldsACreaseClosedAtEveryInnerCornerNode) {
     const auto b = body(spec(depth, 4, along));
     const double element = (kR - 0.5 * kH) * kPhi / along;
     // Closing within 0.4 elements of the root, opening out to 2, the element's larger side
-    // (0.5 mm per layer through h here): the nodes sample the closed form, whose shear grows with the
-    // slope of the closing, at that spacing.
+    // (0.5 mm per layer through h here): the nodes sample the closed form, whose shear grows with
+    // the slope of the closing, at that spacing.
     const double size = std::max(element, depth * kH / 4), r1 = 0.4 * size, r2 = 2.0 * size;
     const auto& in = b.inner();
     int roots = 0;
@@ -148,15 +104,15 @@ TEST(FanLayer, HoldsACreaseClosedAtEveryInnerCornerNode) {
       const double from_rim = element * static_cast<double>(in.size() - 1 - k) / 2.0;
       if (from_rim < 0.5e-3 || from_rim > 4e-3) continue;
       ++roots;
-      EXPECT_NO_THROW(b.check_folds(close_crease(b, in[k], 2.0, r1, r2))) << from_rim;
+      EXPECT_NO_THROW(b.check_folds(mesh_checks::close_crease(b, in[k], 2.0, r1, r2))) << from_rim;
     }
     EXPECT_GE(roots, static_cast<int>(3.5e-3 / element) - 1);
   }
   // The structured mesh does not hold it.
   const auto plain = body(spec(0, 4, 70));
   const double element = (kR - 0.5 * kH) * kPhi / 70;
-  EXPECT_THROW(plain.check_folds(close_crease(plain, plain.inner()[130], 2.0, 0.4 * element,
-                                              2.0 * element)),
+  EXPECT_THROW(plain.check_folds(mesh_checks::close_crease(plain, plain.inner()[130], 2.0,
+                                                           0.4 * element, 2.0 * element)),
                fem::FoldedElement);
 }
 
