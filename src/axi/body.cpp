@@ -63,13 +63,14 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
         spec.phi < std::numbers::pi && spec.through >= 1 && spec.along >= 1 &&
         spec.rim_grading >= 1.0 && spec.rim_grading <= 100.0 && spec.crease_fan_from_rim >= 0.0 &&
         std::isfinite(spec.crease_fan_from_rim) && spec.crease_fan_band >= 0.0 &&
-        std::isfinite(spec.crease_fan_band))) {
+        std::isfinite(spec.crease_fan_band) && spec.crease_seed_from_rim >= 0.0 &&
+        std::isfinite(spec.crease_seed_from_rim))) {
     throw std::invalid_argument(
         fmt::format("unusable axisymmetric mesh: R = {} m, h = {} m, phi = {} rad, {} x {} "
-                    "elements, rim grading {} (1 to 100), crease fan {} m (band {} m; neither "
-                    "negative)",
+                    "elements, rim grading {} (1 to 100), crease fan {} m (band {} m), seeded "
+                    "crease {} m (none of them negative)",
                     spec.R, spec.h, spec.phi, spec.along, spec.through, spec.rim_grading,
-                    spec.crease_fan_from_rim, spec.crease_fan_band));
+                    spec.crease_fan_from_rim, spec.crease_fan_band, spec.crease_seed_from_rim));
   }
   // Node lattice (i, j): i = 0..2 along along the meridian (polar angle), j = 0..2 through
   // through the thickness (inner to outer).
@@ -117,6 +118,7 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   }
   if (spec.crease_fan_from_rim > 0.0) add_crease_fans(theta);
   if (spec.fan_layer > 0) add_fan_layer(theta);
+  if (spec.crease_seed_from_rim > 0.0) add_crease_seed(theta);
 
   // Quadrature data, and the consistent mass's diagonal for the lumping.
   mass_.assign(nodes_.size(), 0.0);
@@ -356,9 +358,112 @@ void Body::add_fan_layer(const std::vector<double>& theta) {
   drop_unused_nodes();  // the lattice's nodes inside the layer that no element holds now
 }
 
-double Body::crease_root_from_rim() const {
-  if (crease_root_ < 0) return std::numeric_limits<double>::quiet_NaN();
-  return inner_arc_from_rim(spec_, std::atan2(nodes_.r[crease_root_], -nodes_.z[crease_root_]));
+// The inner corner node nearest MeshSpec::crease_seed_from_rim gets a rosette and is moved
+// radially outwards (into the solid) by MeshSpec::crease_seed_depth.
+void Body::add_crease_seed(const std::vector<double>& theta) {
+  const double depth = spec_.crease_seed_depth;
+  if (spec_.fan_layer > 0 || spec_.crease_fan_from_rim > 0.0 || !std::isfinite(depth) ||
+      depth < 0.0 || !(depth < 0.1 * spec_.h) || spec_.through < 2 || spec_.along < 4) {
+    throw std::invalid_argument(fmt::format(
+        "a seeded crease needs two or more elements through h and four along, no crease fan or "
+        "fan layer, and a notch from 0 to h / 10 deep ({} x {} elements, {} m here, h = {} m)",
+        spec_.along, spec_.through, depth, spec_.h));
+  }
+  int root = 2;
+  double best = std::numeric_limits<double>::infinity();
+  for (int e = 2; e + 2 <= spec_.along; ++e) {
+    const double d = std::abs(inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * e)]) -
+                              spec_.crease_seed_from_rim);
+    if (d < best) best = d, root = e;
+  }
+  add_rosette(root, theta);
+  const double t = theta[static_cast<std::size_t>(2 * root)];
+  const int node = inner_[static_cast<std::size_t>(2 * root)];
+  nodes_.r[node] += depth * std::sin(t);
+  nodes_.z[node] -= depth * std::cos(t);
+  crease_seed_ = node;
+}
+
+// The rosette replaces the block of elements root - 2 .. root + 1 along by the first two layers
+// through h. In the block's lattice coordinates (u 0..8 along, v 0..4 through) the root is
+// P = (4, 0). Four kites meet at P: P A_k C_k A_(k+1), k = 0..3, with A_0 = (6, 0) and
+// A_4 = (2, 0) on the surface (so the inner surface's nodes stay the lattice's), A_1..A_3 on rays
+// 45, 90 and 135 degrees from the surface, and C_k on the rays between, further out. Eight
+// elements fill the ring between the kites and the block's boundary, one for each of its edges:
+// the corners C_0, A_1, C_1, A_2, C_2, A_3, C_3 face the boundary's nodes (8, 2), (8, 4), (6, 4),
+// (4, 4), (2, 4), (0, 4), (0, 2). The angles are physical (the lattice's units along and through
+// differ); the rays' lengths are a = one element along, and 1.3 a for C. On elements longer than
+// deep the kites would be skewed (a closed crease folds them), so the mesh is refused there.
+void Body::add_rosette(int root, const std::vector<double>& theta) {
+  const int nj = 2 * spec_.through + 1, T = spec_.through;
+  const int i0 = 2 * (root - 2);
+  const double along_unit =
+      spec_.R * (theta[static_cast<std::size_t>(i0 + 8)] - theta[static_cast<std::size_t>(i0)]) /
+      8.0;
+  const double through_unit = spec_.h / (nj - 1);
+  if (along_unit > 1.05 * through_unit) {
+    throw std::invalid_argument(fmt::format(
+        "a seeded crease's rosette needs elements no longer than deep: {:.3g} mm along and "
+        "{:.3g} mm through here",
+        2e3 * along_unit, 2e3 * through_unit));
+  }
+  const double a = 2.0 * along_unit;
+  const auto ray = [&](double degrees, double length) {
+    const double t = degrees * std::numbers::pi / 180.0;
+    return UV{4.0 + length * std::cos(t) / along_unit, length * std::sin(t) / through_unit};
+  };
+  const UV P{4, 0}, A0{6, 0}, A4{2, 0};
+  const UV A1 = ray(45, a), A2 = ray(90, a), A3 = ray(135, a);
+  const UV C0 = ray(22.5, 1.3 * a), C1 = ray(67.5, 1.3 * a), C2 = ray(112.5, 1.3 * a),
+           C3 = ray(157.5, 1.3 * a);
+  // Element order: the surface's edge first (increasing u) where there is one.
+  const std::array<std::array<UV, 4>, 12> quads{{
+      {UV{0, 0}, A4, C3, UV{0, 2}},  // on the surface, column root - 2
+      {A4, P, A3, C3},               // root - 1
+      {P, A0, C0, A1},               // root
+      {A0, UV{8, 0}, UV{8, 2}, C0},  // root + 1
+      {UV{0, 2}, C3, A3, UV{0, 4}},
+      {A3, C2, UV{2, 4}, UV{0, 4}},
+      {C2, A2, UV{4, 4}, UV{2, 4}},
+      {A2, C1, UV{6, 4}, UV{4, 4}},
+      {C1, A1, UV{8, 4}, UV{6, 4}},
+      {A1, C0, UV{8, 2}, UV{8, 4}},
+      {P, A1, C1, A2},
+      {P, A2, C2, A3},
+  }};
+  std::vector<std::pair<UV, int>> created;
+  const auto node_at = [&](const UV& uv) {
+    const bool on_lattice = uv[0] == std::round(uv[0]) && uv[1] == std::round(uv[1]);
+    const bool on_boundary = uv[0] == 0 || uv[0] == 8 || uv[1] == 0 || uv[1] == 4;
+    if (on_lattice && on_boundary) {
+      return (i0 + static_cast<int>(uv[0])) * nj + static_cast<int>(uv[1]);
+    }
+    for (const auto& [at, id] : created) {
+      if (std::abs(at[0] - uv[0]) < 1e-9 && std::abs(at[1] - uv[1]) < 1e-9) return id;
+    }
+    const auto [r, z] = lattice_point(i0 + uv[0], uv[1], theta);
+    nodes_.r.push_back(r);
+    nodes_.z.push_back(z);
+    created.emplace_back(uv, static_cast<int>(nodes_.r.size()) - 1);
+    return created.back().second;
+  };
+  // The block's eight elements: columns root - 2 .. root + 1, layers 0 and 1; the surface's
+  // first, so that element column * through stays the column's inner one.
+  for (int q = 0; q < 12; ++q) {
+    const auto el = quad_nodes(quads[static_cast<std::size_t>(q)], node_at);
+    const int column = root - 2 + q % 4;
+    if (q < 8) {
+      elements_[static_cast<std::size_t>(column * T + q / 4)] = el;
+    } else {
+      elements_.push_back(el);
+    }
+  }
+  drop_unused_nodes();
+}
+
+double Body::from_rim(int node) const {
+  if (node < 0) return std::numeric_limits<double>::quiet_NaN();
+  return inner_arc_from_rim(spec_, std::atan2(nodes_.r[node], -nodes_.z[node]));
 }
 
 // Renumbers the nodes that some element holds, in their order, and drops the rest (the lattice's

@@ -244,6 +244,10 @@ class Tracer {
   std::optional<int> correct(State& s, const Arc& arc);
   BranchPoint point(const State& s, int iterations);
   bool at_end_dp(State& s, const State& before);
+  // Reports the points up to (not including) `end` not yet reported (BranchOptions::progress).
+  void report(const StaticBranch& b, std::size_t end) {
+    for (; o_.progress && reported_ < end; ++reported_) o_.progress(b.points[reported_]);
+  }
 
   const Body& body_;
   const BranchOptions& o_;
@@ -254,6 +258,7 @@ class Tracer {
   // The stiffness at fixed dp of the corrector's last iteration, one Newton correction (below
   // the tolerance) from the point it converged to: what the stability check factorises.
   Triplets last_stiffness_;
+  std::size_t reported_ = 1;  // the natural state, point 0, is not reported
 };
 
 std::optional<int> Tracer::correct(State& s, const Arc& arc) {
@@ -360,6 +365,8 @@ bool positive_definite(const Triplets& t, int n) {
 }
 
 constexpr double kMinTurnCosine = 0.9;
+// How many times a trace may take a point again with a shorter step (Tracer::run).
+constexpr int kMaxStepsBack = 20;
 
 // The cosine between the arc's tangent and the step from s to next.
 double turn(const State& s, const State& next, const Arc& arc, double scale) {
@@ -380,6 +387,17 @@ StaticBranch Tracer::run() {
   const double scale = body_.spec().h * std::sqrt(static_cast<double>(s.u.size()));
   int rise = -1;  // -1 rising to p_c, 0 falling after a maximum, 1 rising after a minimum
   bool inverted_minimum = false;  // the last minimum lay on the inverted side (V < 0)
+  // The walk as it was before the last point was taken, to take that point again with a
+  // shorter step (below).
+  struct Walk {
+    State s;
+    std::optional<State> previous;
+    double taken;
+    int rise;
+    bool inverted_minimum;
+  };
+  std::optional<Walk> before_last;
+  int steps_back = 0;
   while (static_cast<int>(b.points.size()) < o_.max_points) {
     State trial = s;
     // The first step: volume control.
@@ -402,6 +420,22 @@ StaticBranch Tracer::run() {
     if (iterations && previous && turn(s, trial, arc, scale) < kMinTurnCosine) iterations.reset();
     if (!iterations) {
       ds *= 0.5;
+      // Past a sharp turn (a maximum whose curvature one step spans) the secant of the last
+      // step can lie more than the turn limit off the branch's tangent at its end, so that no
+      // step from there, however short, is kept: the last point is taken again, with a quarter
+      // of its step, and the walk goes on from the shorter secant.
+      if (ds < o_.min_step && before_last && steps_back < kMaxStepsBack) {
+        ds = 0.25 * taken;
+        s = before_last->s;
+        previous = before_last->previous;
+        taken = before_last->taken;
+        rise = before_last->rise;
+        inverted_minimum = before_last->inverted_minimum;
+        before_last.reset();
+        b.points.pop_back();
+        ++steps_back;
+        continue;
+      }
       if (ds < o_.min_step) {
         b.stop_reason = fmt::format(
             "the continuation found no equilibrium within an arclength step of {:.2g} after "
@@ -411,11 +445,12 @@ StaticBranch Tracer::run() {
       }
       continue;
     }
+    before_last = Walk{s, previous, taken, rise, inverted_minimum};
     previous = s;
     s = trial;
     taken = ds;
     b.points.push_back(point(s, *iterations));
-    if (o_.progress) o_.progress(b.points.back());
+    report(b, b.points.size() - 1);
     if (o_.check_folds) {
       try {
         body_.check_folds(x_);
@@ -481,6 +516,7 @@ StaticBranch Tracer::run() {
   if (!b.reached_end && b.stop_reason.empty()) {
     b.stop_reason = fmt::format("stopped after {} points", b.points.size());
   }
+  report(b, b.points.size());
   find_extrema(b, o_.p_ref);
   problem_.scatter(s.u, x_);
   b.state = x_;

@@ -71,7 +71,10 @@ struct BranchOptions {
   bool contacts = true;     // self-contact and the container's cone
   double tolerance = 1e-8;  // Newton: |residual| below this times p_ref times the rim's area
   bool check_folds = true;  // at every converged point
-  std::function<void(const BranchPoint&)> progress;  // each converged point
+  // Each point of the branch as it is kept, once the next is found (a point may be taken again
+  // with a shorter step, or replaced by the equilibrium at exactly end_dp, before that); the
+  // last when the trace ends. The branch's points are the points reported, in order.
+  std::function<void(const BranchPoint&)> progress;
 };
 
 struct StaticBranch {
