@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <numbers>
@@ -218,7 +219,7 @@ using UV = std::array<double, 2>;
 // (2, 0), (2, 2), (0, 2), straight in lattice coordinates: node (a, b) at the bilinear
 // interpolation of the corners, its index from node_at.
 template <typename NodeAt>
-std::array<int, 9> quad_nodes(const std::array<UV, 4>& c, NodeAt node_at) {
+std::array<int, 9> quad_nodes(const std::array<UV, 4>& c, NodeAt&& node_at) {
   std::array<int, 9> el{};
   for (int a = 0; a < 3; ++a) {
     for (int b = 0; b < 3; ++b) {
@@ -245,6 +246,27 @@ std::array<double, 2> Body::lattice_point(double u, double v,
   return {s * std::sin(t), -s * std::cos(t)};
 }
 
+std::function<int(const std::array<double, 2>&)> Body::block_nodes(
+    int i0, int width, const std::vector<double>& theta) {
+  const int nj = 2 * spec_.through + 1;
+  return [this, i0, width, nj, &theta,
+          created = std::vector<std::pair<UV, int>>()](const UV& uv) mutable {
+    const bool on_lattice = uv[0] == std::round(uv[0]) && uv[1] == std::round(uv[1]);
+    const bool on_boundary = uv[0] == 0 || uv[0] == width || uv[1] == 0 || uv[1] == 4;
+    if (on_lattice && on_boundary) {
+      return (i0 + static_cast<int>(uv[0])) * nj + static_cast<int>(uv[1]);
+    }
+    for (const auto& [at, id] : created) {
+      if (std::abs(at[0] - uv[0]) < 1e-9 && std::abs(at[1] - uv[1]) < 1e-9) return id;
+    }
+    const auto [r, z] = lattice_point(i0 + uv[0], uv[1], theta);
+    nodes_.r.push_back(r);
+    nodes_.z.push_back(z);
+    created.emplace_back(uv, static_cast<int>(nodes_.r.size()) - 1);
+    return created.back().second;
+  };
+}
+
 // The fan replaces the 2 x 2 block of elements whose inner-surface edge's middle corner is the
 // root P: in the block's lattice coordinates (u along, v through, 0..4 each) its corners are
 // A (0, 0), P (2, 0), B (4, 0), C (0, 2), D (4, 2), E (0, 4), M (2, 4), F (4, 4), and its
@@ -266,22 +288,7 @@ void Body::add_fan_block(int root, const std::vector<double>& theta) {
   const UV O1{2 - du, 1.6}, O2{2 + du, 1.6};
   const std::array<std::array<UV, 4>, 5> quads{
       {{A, P, O1, C}, {P, O2, M, O1}, {P, B, D, O2}, {C, O1, M, E}, {O2, D, F, M}}};
-  std::vector<std::pair<UV, int>> created;
-  const auto node_at = [&](const UV& uv) {
-    const bool on_lattice = uv[0] == std::round(uv[0]) && uv[1] == std::round(uv[1]);
-    const bool on_boundary = uv[0] == 0 || uv[0] == 4 || uv[1] == 0 || uv[1] == 4;
-    if (on_lattice && on_boundary) {
-      return (i0 + static_cast<int>(uv[0])) * nj + static_cast<int>(uv[1]);
-    }
-    for (const auto& [at, id] : created) {
-      if (std::abs(at[0] - uv[0]) < 1e-9 && std::abs(at[1] - uv[1]) < 1e-9) return id;
-    }
-    const auto [r, z] = lattice_point(i0 + uv[0], uv[1], theta);
-    nodes_.r.push_back(r);
-    nodes_.z.push_back(z);
-    created.emplace_back(uv, static_cast<int>(nodes_.r.size()) - 1);
-    return created.back().second;
-  };
+  auto node_at = block_nodes(i0, 4, theta);
   std::array<std::array<int, 9>, 5> fan{};
   for (int q = 0; q < 5; ++q) fan[q] = quad_nodes(quads[q], node_at);
   // The inner-surface elements keep their places (element e * through is e's inner one).
@@ -431,22 +438,7 @@ void Body::add_rosette(int root, const std::vector<double>& theta) {
       {P, A1, C1, A2},
       {P, A2, C2, A3},
   }};
-  std::vector<std::pair<UV, int>> created;
-  const auto node_at = [&](const UV& uv) {
-    const bool on_lattice = uv[0] == std::round(uv[0]) && uv[1] == std::round(uv[1]);
-    const bool on_boundary = uv[0] == 0 || uv[0] == 8 || uv[1] == 0 || uv[1] == 4;
-    if (on_lattice && on_boundary) {
-      return (i0 + static_cast<int>(uv[0])) * nj + static_cast<int>(uv[1]);
-    }
-    for (const auto& [at, id] : created) {
-      if (std::abs(at[0] - uv[0]) < 1e-9 && std::abs(at[1] - uv[1]) < 1e-9) return id;
-    }
-    const auto [r, z] = lattice_point(i0 + uv[0], uv[1], theta);
-    nodes_.r.push_back(r);
-    nodes_.z.push_back(z);
-    created.emplace_back(uv, static_cast<int>(nodes_.r.size()) - 1);
-    return created.back().second;
-  };
+  auto node_at = block_nodes(i0, 8, theta);
   // The block's eight elements: columns root - 2 .. root + 1, layers 0 and 1; the surface's
   // first, so that element column * through stays the column's inner one.
   for (int q = 0; q < 12; ++q) {

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -165,6 +166,11 @@ class Body {
   // integers), on the reference arcs.
   [[nodiscard]] std::array<double, 2> lattice_point(double u, double v,
                                                     const std::vector<double>& theta) const;
+  // Node indices for the points of a block of the lattice (u from i0 to i0 + width, v from 0 to
+  // 4, in lattice units): the lattice's own node on the block's boundary, else a node made on
+  // the first call for that point.
+  std::function<int(const std::array<double, 2>&)> block_nodes(int i0, int width,
+                                                               const std::vector<double>& theta);
   void add_crease_fans(const std::vector<double>& theta);
   void add_fan_block(int root, const std::vector<double>& theta);
   void add_fan_layer(const std::vector<double>& theta);
