@@ -348,6 +348,10 @@ void check_same_numerics(const nlohmann::json& before_in, const nlohmann::json& 
   if (before.value("model", "3d") == "axisymmetric" && !before.contains("fan_layer")) {
     before["fan_layer"] = 0;
   }
+  if (before.value("model", "3d") == "axisymmetric" && !before.contains("crease_seed_from_rim")) {
+    before["crease_seed_from_rim"] = nullptr;
+    before["crease_seed_depth"] = 0.0;
+  }
   std::string differ;
   for (const auto& [key, value] : before.items()) {
     if (key == "end_time") continue;

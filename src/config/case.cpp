@@ -100,6 +100,16 @@ constexpr KeySpec kKeys[] = {
      "axisymmetric: with numerics.crease_fan, fans at every second inner-surface node within "
      "this arc length about it, where the crease's root is known only to within it",
      nullptr, +[](Case& c) { return &c.numerics.crease_fan_band; }},
+    {"numerics", "crease_seed", "crease-seed", Dimension::Length, false, std::nullopt, "",
+     "3.35 mm",
+     "axisymmetric: arc length from the rim along the inner surface of a seeded crease's root, "
+     "given a rosette of four elements (none when absent)",
+     nullptr, +[](Case& c) { return &c.numerics.crease_seed; }},
+    {"numerics", "crease_seed_depth", "crease-seed-depth", Dimension::Length, false, std::nullopt,
+     "", "25 um",
+     "axisymmetric: with numerics.crease_seed, how far its node is moved into the solid, a notch "
+     "where the crease can start (0 when absent)",
+     nullptr, +[](Case& c) { return &c.numerics.crease_seed_depth; }},
     {"numerics", "time_step_factor", "time-step-factor", Dimension::Dimensionless, false,
      std::nullopt, "", "0.5",
      "3D elastic time step factor: dt = factor * smallest node spacing / p-wave speed (0.5 when "
@@ -509,6 +519,17 @@ Case build(const Reader& r, Case c) {
     positive("numerics", "crease_fan_band", *c.numerics.crease_fan_band);
     check(c.numerics.crease_fan.has_value(),
           "numerics.crease_fan_band spreads the fans about numerics.crease_fan: give both");
+  }
+  if (c.numerics.crease_seed) positive("numerics", "crease_seed", *c.numerics.crease_seed);
+  check(
+      !(c.numerics.crease_seed && (c.numerics.crease_fan || c.numerics.fan_layer.value_or(0) > 0)),
+      "numerics.crease_seed gives one node a rosette of its own: give neither numerics.crease_fan "
+      "nor numerics.fan_layer with it");
+  if (c.numerics.crease_seed_depth) {
+    check(*c.numerics.crease_seed_depth >= 0.0 && std::isfinite(*c.numerics.crease_seed_depth),
+          "numerics.crease_seed_depth must be zero or positive");
+    check(c.numerics.crease_seed.has_value(),
+          "numerics.crease_seed_depth notches the node of numerics.crease_seed: give both");
   }
   if (c.numerics.end_time) positive("numerics", "end_time", *c.numerics.end_time);
   if (c.numerics.time_step_factor) {

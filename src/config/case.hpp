@@ -143,7 +143,12 @@ struct Numerics {
   // Axisymmetric: every inner corner node a crease's root, the first 1 or 2 layers of elements
   // through h tiled into fans (axi::MeshSpec::fan_layer); the structured mesh when absent or 0.
   std::optional<int> fan_layer;
-  std::optional<double> grid_spacing;  // [m]; from the resolution preset (a fraction of h)
+  // Axisymmetric: a seeded crease, the inner corner node nearest this arc length from the rim
+  // given a rosette of four elements and moved into the solid by crease_seed_depth
+  // (axi::MeshSpec::crease_seed_from_rim); none when absent.
+  std::optional<double> crease_seed;        // [m]
+  std::optional<double> crease_seed_depth;  // [m]; 0 when absent
+  std::optional<double> grid_spacing;       // [m]; from the resolution preset (a fraction of h)
   // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
   // 1, fine 2; axisymmetric: 2, 4, 8).
   std::optional<int> elements_through_thickness;

@@ -29,7 +29,9 @@ axi::Body make_body(const config::Case& c, const Numerics& n) {
                                  .reduced_bulk = n.reduced_bulk,
                                  .crease_fan_from_rim = n.axi_crease_fan,
                                  .crease_fan_band = n.axi_crease_fan_band,
-                                 .fan_layer = n.axi_fan_layer},
+                                 .fan_layer = n.axi_fan_layer,
+                                 .crease_seed_from_rim = n.axi_crease_seed,
+                                 .crease_seed_depth = n.axi_crease_seed_depth},
                    body_material(c.material));
 }
 
@@ -72,6 +74,13 @@ std::string AxiShell::describe() const {
                           body_.crease_fans(), 1e3 * body_.spec().crease_fan_band)
             : std::string());
   }
+  if (body_.crease_seed() >= 0) {
+    text += fmt::format(
+        "  seeded      a crease's root at the inner surface's node {:.3g} mm from the rim, a "
+        "rosette of four elements around it, notched {:.3g} um into the solid "
+        "(numerics.crease_seed, numerics.crease_seed_depth)\n",
+        1e3 * body_.crease_seed_from_rim(), 1e6 * s.crease_seed_depth);
+  }
   return text;
 }
 
@@ -88,6 +97,9 @@ nlohmann::json AxiShell::numerics_json() const {
        body_.crease_root() < 0 ? nlohmann::json() : nlohmann::json(body_.crease_root_from_rim())},
       {"crease_fans", body_.crease_fans()},
       {"fan_layer", s.fan_layer},
+      {"crease_seed_from_rim",
+       body_.crease_seed() < 0 ? nlohmann::json() : nlohmann::json(body_.crease_seed_from_rim())},
+      {"crease_seed_depth", s.crease_seed_depth},
       {"dt", dynamics_.dt()},
       {"omega_max", omega_max_}};
 }

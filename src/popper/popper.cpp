@@ -64,6 +64,14 @@ Numerics resolve_numerics(const config::Case& c) {
                     "numerics.crease_fan with it",
                     c.source));
   }
+  if (c.numerics.crease_seed && n.model != config::Model::Axisymmetric) {
+    throw config::CaseError(
+        fmt::format("{}: numerics.crease_seed seeds a crease in the axisymmetric mesh: run it with "
+                    "numerics.model = \"axisymmetric\"",
+                    c.source));
+  }
+  n.axi_crease_seed = c.numerics.crease_seed.value_or(0.0);
+  n.axi_crease_seed_depth = c.numerics.crease_seed_depth.value_or(0.0);
   n.axi_crease_fan = c.numerics.crease_fan.value_or(0.0);
   n.axi_crease_fan_band = c.numerics.crease_fan_band.value_or(0.0);
   // The plate acts on a particle whose stencil holds a plate node, i.e. from up to 1.5 cells

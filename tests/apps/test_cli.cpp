@@ -711,6 +711,36 @@ TEST(Cli, AFanLayerIsPrintedAndKeptInTheSummaryAndRefusedByThe3DModel) {
   EXPECT_NE(three_d.err.find("numerics.fan_layer"), std::string::npos) << three_d.err;
 }
 
+TEST(Cli, ASeededCreaseIsPrintedAndKeptInTheSummaryAndRefusedWhereTheMeshCannotTakeIt) {
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_crease_seed";
+  std::filesystem::remove_all(dir);
+  // Elements of 1 mm along and through (the coarse preset's two through h).
+  const auto r = run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--element-size",
+                      "1mm", "--crease-seed", "3mm", "--crease-seed-depth", "25um", "--end-time",
+                      "1ms", "--output", dir.string()});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("seeded      a crease's root at the inner surface's node"),
+            std::string::npos)
+      << r.out;
+  std::ifstream in(dir / "summary.json");
+  const auto n = nlohmann::json::parse(in)["numerics"];
+  // 42 elements along 29 mm x 80 deg: the inner corner node nearest 3 mm is the third.
+  EXPECT_NEAR(n["crease_seed_from_rim"].get<double>(), 3 * 29e-3 * 80.0 / 180.0 * 3.14159265 / 42,
+              1e-6);
+  EXPECT_DOUBLE_EQ(n["crease_seed_depth"].get<double>(), 25e-6);
+  EXPECT_EQ(n["elements"].get<int>(), 2 * 42 + 4);
+  // The coarse preset's own elements are twice as long as deep.
+  const auto flat =
+      run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--crease-seed", "3mm",
+           "--end-time", "1ms", "--output", (dir / "flat").string()});
+  EXPECT_NE(flat.code, kExitOk);
+  EXPECT_NE(flat.err.find("no longer than deep"), std::string::npos) << flat.err;
+  const auto three_d =
+      run({"run", "--crease-seed", "3mm", "--end-time", "1ms", "--output", (dir / "3d").string()});
+  EXPECT_EQ(three_d.code, kExitBadInput);
+  EXPECT_NE(three_d.err.find("numerics.crease_seed"), std::string::npos) << three_d.err;
+}
+
 TEST(Cli, RunSaysWhereALinkedOutputFolderReallyIs) {
   const auto base = std::filesystem::temp_directory_path() / "snapjump_cli_linked_output";
   std::filesystem::remove_all(base);

@@ -273,6 +273,30 @@ TEST(CaseFile, ACreaseFanIsALengthOfTheAxisymmetricMesh) {
                {"numerics.crease_fan_band", "give both"});
 }
 
+TEST(CaseFile, ASeededCreaseIsALengthAndANotchOfTheAxisymmetricMesh) {
+  const auto c = parse_case(kMinimal +
+                                "[numerics]\nmodel = \"axisymmetric\"\ncrease_seed = \"3.35 mm\"\n"
+                                "crease_seed_depth = \"25 um\"\n",
+                            "case.toml");
+  ASSERT_TRUE(c.numerics.crease_seed && c.numerics.crease_seed_depth);
+  EXPECT_DOUBLE_EQ(*c.numerics.crease_seed, 3.35e-3);
+  EXPECT_DOUBLE_EQ(*c.numerics.crease_seed_depth, 25e-6);
+  // Written and read back.
+  const auto r = parse_case(to_toml(c), "written.toml");
+  EXPECT_EQ(r.numerics.crease_seed, c.numerics.crease_seed);
+  EXPECT_EQ(r.numerics.crease_seed_depth, c.numerics.crease_seed_depth);
+  expect_error(kMinimal + "[numerics]\ncrease_seed = \"3 s\"\n", {"numerics.crease_seed"});
+  expect_error(kMinimal + "[numerics]\ncrease_seed = \"-3 mm\"\n", {"numerics.crease_seed"});
+  expect_error(kMinimal + "[numerics]\ncrease_seed_depth = \"25 um\"\n",
+               {"numerics.crease_seed_depth", "give both"});
+  expect_error(kMinimal + "[numerics]\ncrease_seed = \"3 mm\"\ncrease_seed_depth = \"-1 um\"\n",
+               {"numerics.crease_seed_depth"});
+  expect_error(kMinimal + "[numerics]\ncrease_seed = \"3 mm\"\ncrease_fan = \"2 mm\"\n",
+               {"numerics.crease_seed", "numerics.crease_fan"});
+  expect_error(kMinimal + "[numerics]\ncrease_seed = \"3 mm\"\nfan_layer = 1\n",
+               {"numerics.crease_seed", "numerics.fan_layer"});
+}
+
 TEST(CaseFile, AFanLayerIsZeroOneOrTwoLayersOfTheAxisymmetricMesh) {
   const auto c =
       parse_case(kMinimal + "[numerics]\nmodel = \"axisymmetric\"\nfan_layer = 2\n", "case.toml");

@@ -43,6 +43,23 @@ TEST(Numerics, ACreaseFanIsTheAxisymmetricModels) {
   EXPECT_EQ(resolve_numerics(c).axi_crease_fan, 2e-3);
 }
 
+// A seeded crease too.
+TEST(Numerics, ASeededCreaseIsTheAxisymmetricModels) {
+  auto c = config::default_case();
+  c.numerics.crease_seed = 3e-3;
+  c.numerics.crease_seed_depth = 25e-6;
+  try {
+    (void)resolve_numerics(c);
+    FAIL() << "the 3D model took a seeded crease";
+  } catch (const config::CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("numerics.crease_seed"), std::string::npos) << e.what();
+  }
+  c.numerics.model = config::Model::Axisymmetric;
+  const auto n = resolve_numerics(c);
+  EXPECT_EQ(n.axi_crease_seed, 3e-3);
+  EXPECT_EQ(n.axi_crease_seed_depth, 25e-6);
+}
+
 // A fan layer belongs to the axisymmetric mesh too, and not with a crease fan.
 TEST(Numerics, AFanLayerIsTheAxisymmetricModels) {
   auto c = config::default_case();
