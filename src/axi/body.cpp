@@ -184,16 +184,24 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   for (double m : mass_) total_mass_ += m;
 }
 
+int Body::nearest_inner_corner(double from_rim, int first, int last,
+                               const std::vector<double>& theta) const {
+  int nearest = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (int e = first; e <= last; ++e) {
+    const double d =
+        std::abs(inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * e)]) - from_rim);
+    if (d < best) best = d, nearest = e;
+  }
+  return nearest;
+}
+
 // The root nearest MeshSpec::crease_fan_from_rim and, with a band, every second corner node
 // within it get a fan each; the lattice's nodes the blocks no longer hold are dropped.
 void Body::add_crease_fans(const std::vector<double>& theta) {
   const auto from_rim = [&](int e) { return inner_arc_from_rim(spec_, theta[2 * e]); };
-  int root = -1;  // the element index along whose first corner is the root
-  double best = std::numeric_limits<double>::infinity();
-  for (int e = 1; e < spec_.along; ++e) {
-    const double d = std::abs(from_rim(e) - spec_.crease_fan_from_rim);
-    if (d < best) best = d, root = e;
-  }
+  // The element index along whose first corner is the root.
+  const int root = nearest_inner_corner(spec_.crease_fan_from_rim, 1, spec_.along - 1, theta);
   if (spec_.through < 2 || root < 0) {
     throw std::invalid_argument(fmt::format(
         "a crease fan needs two or more elements through h and two along ({} x {} here)",
@@ -376,13 +384,7 @@ void Body::add_crease_seed(const std::vector<double>& theta) {
         "fan layer, and a notch from 0 to h / 10 deep ({} x {} elements, {} m here, h = {} m)",
         spec_.along, spec_.through, depth, spec_.h));
   }
-  int root = 2;
-  double best = std::numeric_limits<double>::infinity();
-  for (int e = 2; e + 2 <= spec_.along; ++e) {
-    const double d = std::abs(inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * e)]) -
-                              spec_.crease_seed_from_rim);
-    if (d < best) best = d, root = e;
-  }
+  const int root = nearest_inner_corner(spec_.crease_seed_from_rim, 2, spec_.along - 2, theta);
   add_rosette(root, theta);
   const double t = theta[static_cast<std::size_t>(2 * root)];
   const int node = inner_[static_cast<std::size_t>(2 * root)];

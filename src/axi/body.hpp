@@ -171,6 +171,10 @@ class Body {
   // the first call for that point.
   std::function<int(const std::array<double, 2>&)> block_nodes(int i0, int width,
                                                                const std::vector<double>& theta);
+  // The element index e in [first, last] whose first inner corner node (lattice (2e, 0)) lies
+  // nearest the arc length from_rim [m] from the rim; -1 when the range is empty.
+  [[nodiscard]] int nearest_inner_corner(double from_rim, int first, int last,
+                                         const std::vector<double>& theta) const;
   void add_crease_fans(const std::vector<double>& theta);
   void add_fan_block(int root, const std::vector<double>& theta);
   void add_fan_layer(const std::vector<double>& theta);

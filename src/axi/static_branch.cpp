@@ -380,15 +380,9 @@ double turn(const State& s, const State& next, const Arc& arc, double scale) {
 StaticBranch Tracer::run() {
   StaticBranch b;
   b.V0 = V0_;
-  State s{problem_.gather(body_.nodes()), 0.0, 1.0};
-  b.points.push_back(point(s, 0));
-  std::optional<State> previous;
-  double ds = o_.step, taken = o_.step;
-  const double scale = body_.spec().h * std::sqrt(static_cast<double>(s.u.size()));
-  int rise = -1;  // -1 rising to p_c, 0 falling after a maximum, 1 rising after a minimum
-  bool inverted_minimum = false;  // the last minimum lay on the inverted side (V < 0)
-  // The walk as it was before the last point was taken, to take that point again with a
-  // shorter step (below).
+  // The walk's state: the last point s and the one before it, the step that led to s, and where
+  // the branch is (rise: -1 rising to p_c, 0 falling after a maximum, 1 rising after a minimum;
+  // inverted_minimum: the last minimum lay on the inverted side, V < 0).
   struct Walk {
     State s;
     std::optional<State> previous;
@@ -396,6 +390,13 @@ StaticBranch Tracer::run() {
     int rise;
     bool inverted_minimum;
   };
+  Walk walk{State{problem_.gather(body_.nodes()), 0.0, 1.0}, std::nullopt, o_.step, -1, false};
+  auto& [s, previous, taken, rise, inverted_minimum] = walk;
+  b.points.push_back(point(s, 0));
+  double ds = o_.step;
+  const double scale = body_.spec().h * std::sqrt(static_cast<double>(s.u.size()));
+  // The walk as it was before the last point was taken, to take that point again with a
+  // shorter step (below).
   std::optional<Walk> before_last;
   int steps_back = 0;
   while (static_cast<int>(b.points.size()) < o_.max_points) {
@@ -426,11 +427,7 @@ StaticBranch Tracer::run() {
       // of its step, and the walk goes on from the shorter secant.
       if (ds < o_.min_step && before_last && steps_back < kMaxStepsBack) {
         ds = 0.25 * taken;
-        s = before_last->s;
-        previous = before_last->previous;
-        taken = before_last->taken;
-        rise = before_last->rise;
-        inverted_minimum = before_last->inverted_minimum;
+        walk = *before_last;
         before_last.reset();
         b.points.pop_back();
         ++steps_back;
@@ -445,7 +442,7 @@ StaticBranch Tracer::run() {
       }
       continue;
     }
-    before_last = Walk{s, previous, taken, rise, inverted_minimum};
+    before_last = walk;
     previous = s;
     s = trial;
     taken = ds;
