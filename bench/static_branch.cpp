@@ -5,8 +5,9 @@
 //
 //   build/static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V_OVER_V0] [--grading G]
 //                       [--end-dp DP_OVER_P_ZOELLY] [--crease-fan FROM_RIM_mm [--crease-fan-band
-//                       mm] | --fan-layer LAYERS | --seed FROM_RIM_mm DEPTH_mm] THROUGH ALONG
+//                       mm] | --fan-layer LAYERS | --seed FROM_RIM_mm DEPTH_mm ...] THROUGH ALONG
 //                       [R_mm h_mm [PHI_deg [NU]]]
+// --seed may be given more than once (one rosette each; the last depth notches them all).
 #include "axi/static_branch.hpp"
 
 #include <fmt/format.h>
@@ -38,12 +39,13 @@ int run(int argc, char** argv) {
   double end_dp = std::numeric_limits<double>::quiet_NaN();
   double grading = 1.0, fan = 0.0, band = 0.0;
   int fan_layer = 0;
-  double seed_from_rim = 0.0, seed_depth = 0.0;
+  std::vector<double> seeds;
+  double seed_depth = 0.0;
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--no-contacts") {
       o.contacts = false;
     } else if (args[i] == "--seed" && i + 2 < args.size()) {
-      seed_from_rim = std::stod(args[++i]) * 1e-3;
+      seeds.push_back(std::stod(args[++i]) * 1e-3);
       seed_depth = std::stod(args[++i]) * 1e-3;
     } else if (args[i] == "--fan-layer" && i + 1 < args.size()) {
       fan_layer = std::stoi(args[++i]);
@@ -69,7 +71,7 @@ int run(int argc, char** argv) {
     std::fprintf(stderr,
                  "usage: static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V/V0] "
                  "[--grading G] [--end-dp DP] [--crease-fan FROM_RIM_mm [--crease-fan-band mm] | "
-                 "--fan-layer LAYERS | --seed FROM_RIM_mm DEPTH_mm] "
+                 "--fan-layer LAYERS | --seed FROM_RIM_mm DEPTH_mm ...] "
                  "THROUGH ALONG [R_mm h_mm "
                  "[PHI_deg [NU]]]\n");
     return 2;
@@ -87,7 +89,7 @@ int run(int argc, char** argv) {
                         .crease_fan_from_rim = fan,
                         .crease_fan_band = band,
                         .fan_layer = fan_layer,
-                        .crease_seed_from_rim = seed_from_rim,
+                        .crease_seeds_from_rim = seeds,
                         .crease_seed_depth = seed_depth},
                        fem::Material::from_young(kE, nu, kRho));
   const double pc = theory::zoelly_pressure(kE, h, R, nu);
@@ -123,11 +125,11 @@ int run(int argc, char** argv) {
     fmt::print("  crease fan at the inner node {:.4g} mm from the rim ({} fans)\n",
                1e3 * body.crease_root_from_rim(), body.crease_fans());
   }
-  if (body.crease_seed() >= 0) {
+  for (const int node : body.crease_seeds()) {
     fmt::print(
         "  seeded crease: a rosette of four elements at the inner node {:.4g} mm from the rim, "
         "notched {:.3g} um\n",
-        1e3 * body.crease_seed_from_rim(), 1e6 * seed_depth);
+        1e3 * body.from_rim(node), 1e6 * seed_depth);
   }
   fmt::print("  p_c = {:.6g} Pa = {:.5f} p_Zoelly at V / V0 = {:.4f}\n", b.p_c, b.p_c / pc, b.v_c);
   fmt::print("  p_- = {:.6g} Pa = {:.5f} p_Zoelly at V / V0 = {:.4f}\n", b.p_minus, b.p_minus / pc,

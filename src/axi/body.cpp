@@ -1,6 +1,7 @@
 #include "axi/body.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -64,14 +65,16 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
         spec.phi < std::numbers::pi && spec.through >= 1 && spec.along >= 1 &&
         spec.rim_grading >= 1.0 && spec.rim_grading <= 100.0 && spec.crease_fan_from_rim >= 0.0 &&
         std::isfinite(spec.crease_fan_from_rim) && spec.crease_fan_band >= 0.0 &&
-        std::isfinite(spec.crease_fan_band) && spec.crease_seed_from_rim >= 0.0 &&
-        std::isfinite(spec.crease_seed_from_rim))) {
+        std::isfinite(spec.crease_fan_band) &&
+        std::all_of(spec.crease_seeds_from_rim.begin(), spec.crease_seeds_from_rim.end(),
+                    [](double s) { return s > 0.0 && std::isfinite(s); }))) {
     throw std::invalid_argument(
         fmt::format("unusable axisymmetric mesh: R = {} m, h = {} m, phi = {} rad, {} x {} "
                     "elements, rim grading {} (1 to 100), crease fan {} m (band {} m), seeded "
-                    "crease {} m (none of them negative)",
+                    "creases {} m (none of them negative, the seeds positive)",
                     spec.R, spec.h, spec.phi, spec.along, spec.through, spec.rim_grading,
-                    spec.crease_fan_from_rim, spec.crease_fan_band, spec.crease_seed_from_rim));
+                    spec.crease_fan_from_rim, spec.crease_fan_band,
+                    fmt::join(spec.crease_seeds_from_rim, ", ")));
   }
   // Node lattice (i, j): i = 0..2 along along the meridian (polar angle), j = 0..2 through
   // through the thickness (inner to outer).
@@ -119,7 +122,7 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   }
   if (spec.crease_fan_from_rim > 0.0) add_crease_fans(theta);
   if (spec.fan_layer > 0) add_fan_layer(theta);
-  if (spec.crease_seed_from_rim > 0.0) add_crease_seed(theta);
+  if (!spec.crease_seeds_from_rim.empty()) add_crease_seeds(theta);
 
   // Quadrature data, and the consistent mass's diagonal for the lumping.
   mass_.assign(nodes_.size(), 0.0);
@@ -373,9 +376,9 @@ void Body::add_fan_layer(const std::vector<double>& theta) {
   drop_unused_nodes();  // the lattice's nodes inside the layer that no element holds now
 }
 
-// The inner corner node nearest MeshSpec::crease_seed_from_rim gets a rosette and is moved
-// radially outwards (into the solid) by MeshSpec::crease_seed_depth.
-void Body::add_crease_seed(const std::vector<double>& theta) {
+// The inner corner node nearest each of MeshSpec::crease_seeds_from_rim gets a rosette and is
+// moved radially outwards (into the solid) by MeshSpec::crease_seed_depth.
+void Body::add_crease_seeds(const std::vector<double>& theta) {
   const double depth = spec_.crease_seed_depth;
   if (spec_.fan_layer > 0 || spec_.crease_fan_from_rim > 0.0 || !std::isfinite(depth) ||
       depth < 0.0 || !(depth < 0.1 * spec_.h) || spec_.through < 2 || spec_.along < 4) {
@@ -384,13 +387,34 @@ void Body::add_crease_seed(const std::vector<double>& theta) {
         "fan layer, and a notch from 0 to h / 10 deep ({} x {} elements, {} m here, h = {} m)",
         spec_.along, spec_.through, depth, spec_.h));
   }
-  const int root = nearest_inner_corner(spec_.crease_seed_from_rim, 2, spec_.along - 2, theta);
-  add_rosette(root, theta);
-  const double t = theta[static_cast<std::size_t>(2 * root)];
-  const int node = inner_[static_cast<std::size_t>(2 * root)];
-  nodes_.r[node] += depth * std::sin(t);
-  nodes_.z[node] -= depth * std::cos(t);
-  crease_seed_ = node;
+  // Each root's element index along (its first corner), from the axis to the rim.
+  std::vector<int> roots;
+  for (const double s : spec_.crease_seeds_from_rim) {
+    roots.push_back(nearest_inner_corner(s, 2, spec_.along - 2, theta));
+  }
+  std::sort(roots.begin(), roots.end());
+  for (std::size_t k = 1; k < roots.size(); ++k) {
+    if (roots[k] - roots[k - 1] < 4) {
+      throw std::invalid_argument(fmt::format(
+          "two seeded creases' rosettes overlap: their roots {:.3g} and {:.3g} mm from the rim "
+          "are {} elements apart, and each takes two elements on either side",
+          1e3 * inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * roots[k - 1])]),
+          1e3 * inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * roots[k])]),
+          roots[k] - roots[k - 1]));
+    }
+  }
+  // The lattice's node numbers hold until the unused nodes are dropped, after the last rosette.
+  for (const int root : roots) {
+    add_rosette(root, theta);
+    const double t = theta[static_cast<std::size_t>(2 * root)];
+    const int node = inner_[static_cast<std::size_t>(2 * root)];
+    nodes_.r[node] += depth * std::sin(t);
+    nodes_.z[node] -= depth * std::cos(t);
+  }
+  drop_unused_nodes();
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
+    crease_seeds_.push_back(inner_[static_cast<std::size_t>(2 * *it)]);
+  }
 }
 
 // The rosette replaces the block of elements root - 2 .. root + 1 along by the first two layers
@@ -452,7 +476,6 @@ void Body::add_rosette(int root, const std::vector<double>& theta) {
       elements_.push_back(el);
     }
   }
-  drop_unused_nodes();
 }
 
 double Body::from_rim(int node) const {

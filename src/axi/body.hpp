@@ -56,16 +56,16 @@ struct MeshSpec {
   // and the rim. The layer's ends lie on the axis and on the rim face, where the extra edge it
   // needs is a boundary's. Not with crease_fan_from_rim.
   int fan_layer = 0;
-  // A seeded crease's root [m]: the inner surface's corner node nearest this arc length from the
+  // Seeded creases' roots [m]: the inner surface's corner node nearest each arc length from the
   // rim (on the reference inner surface) is given a rosette of four elements, whose corners
   // there are about 45 degrees, in a block of four elements along by two layers through h; and
   // it is moved into the solid, along the reference surface's normal, by crease_seed_depth [m],
   // a notch where a crease can start (real surfaces have flaws; a smooth mesh has none). A
   // closed crease turns the surface through 180 degrees at its root: the rosette's four
-  // corners open from 45 to about 90 degrees, each able to go to 180. 0: none. Needs two or
-  // more elements through h, two along on either side, elements no longer than deep, and
-  // neither a crease fan nor a fan layer.
-  double crease_seed_from_rim = 0.0;
+  // corners open from 45 to about 90 degrees, each able to go to 180. Empty: none. Needs two or
+  // more elements through h, two along on either side, elements no longer than deep, rosettes
+  // whose blocks do not overlap, and neither a crease fan nor a fan layer.
+  std::vector<double> crease_seeds_from_rim = {};
   double crease_seed_depth = 0.0;
 };
 
@@ -105,9 +105,13 @@ class Body {
   [[nodiscard]] int crease_fans() const { return crease_fans_; }
   // Its arc length from the rim on the reference inner surface [m]; NaN without one.
   [[nodiscard]] double crease_root_from_rim() const { return from_rim(crease_root_); }
-  // The seeded crease's root (MeshSpec::crease_seed_from_rim), or -1 without one.
-  [[nodiscard]] int crease_seed() const { return crease_seed_; }
-  [[nodiscard]] double crease_seed_from_rim() const { return from_rim(crease_seed_); }
+  // The seeded creases' roots (MeshSpec::crease_seeds_from_rim), from the rim inwards.
+  [[nodiscard]] const std::vector<int>& crease_seeds() const { return crease_seeds_; }
+  // The one nearest the rim, or -1 without one, and its arc length from the rim [m].
+  [[nodiscard]] int crease_seed() const {
+    return crease_seeds_.empty() ? -1 : crease_seeds_.front();
+  }
+  [[nodiscard]] double crease_seed_from_rim() const { return from_rim(crease_seed()); }
   // The arc length from the rim, on the reference inner surface, at a node's polar angle [m];
   // NaN for -1.
   [[nodiscard]] double from_rim(int node) const;
@@ -160,7 +164,8 @@ class Body {
   double total_mass_ = 0.0;
   double volume_ = 0.0;
   std::vector<int> axis_, rim_, outer_, inner_;
-  int crease_root_ = -1, crease_fans_ = 0, crease_seed_ = -1;
+  int crease_root_ = -1, crease_fans_ = 0;
+  std::vector<int> crease_seeds_;
 
   // A point of the lattice at fractional lattice coordinates (u along, v through; the nodes at
   // integers), on the reference arcs.
@@ -178,7 +183,7 @@ class Body {
   void add_crease_fans(const std::vector<double>& theta);
   void add_fan_block(int root, const std::vector<double>& theta);
   void add_fan_layer(const std::vector<double>& theta);
-  void add_crease_seed(const std::vector<double>& theta);
+  void add_crease_seeds(const std::vector<double>& theta);
   void add_rosette(int root, const std::vector<double>& theta);
   void drop_unused_nodes();
 };

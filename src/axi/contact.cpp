@@ -15,8 +15,16 @@ double default_contact_stiffness(const Body& body) {
   return (m.lambda + 2.0 * m.mu) / (body.spec().h / body.spec().through);
 }
 
-InnerSelfContact::InnerSelfContact(const Body& body, double stiffness)
-    : body_(&body), k_(stiffness), depth_limit_(body.spec().h) {
+Penalty penalty(double depth, double smoothing) {
+  if (depth >= smoothing) {
+    const double g0 = smoothing;
+    return {depth - 0.5 * g0, 0.5 * depth * depth - 0.5 * g0 * depth + g0 * g0 / 6.0};
+  }
+  return {0.5 * depth * depth / smoothing, depth * depth * depth / (6.0 * smoothing)};
+}
+
+InnerSelfContact::InnerSelfContact(const Body& body, double stiffness, double smoothing)
+    : body_(&body), k_(stiffness), smoothing_(smoothing), depth_limit_(body.spec().h) {
   // Each node's share of the reference inner surface: the integral of N_a dA, dA = 2 pi rho ds.
   area_.assign(body.inner().size(), 0.0);
   body.for_each_inner_point(
@@ -111,14 +119,15 @@ double InnerSelfContact::add_forces(const Points& x, Points& f) const {
       const double nr = -tz / tn, nz = tr / tn;
       const double g = (qr - cr) * nr + (qz - cz) * nz;
       if (!(g < 0.0) || g < -depth_limit_) continue;
-      const double push = k_ * area_[a] * (-g);  // along n on the node
+      const auto law = penalty(-g, smoothing_);
+      const double push = k_ * area_[a] * law.force;  // along n on the node
       f.r[in[a]] += push * nr;
       f.z[in[a]] += push * nz;
       for (int m = 0; m < 3; ++m) {
         f.r[in[k + m]] -= push * L[m] * nr;
         f.z[in[k + m]] -= push * L[m] * nz;
       }
-      energy += 0.5 * k_ * area_[a] * g * g;
+      energy += k_ * area_[a] * law.energy;
       deepest_ = std::max(deepest_, -g);
       ++touching_;
     }

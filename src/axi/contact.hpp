@@ -14,6 +14,12 @@
 // opposite force through the shape functions at the closest point. The forces are minus the
 // gradient of the energy sum (k/2) A_a g^2, so the contact conserves energy and the z resultant
 // is zero (each ring pushes the other).
+//
+// A Newton solver needs more: the plain law's stiffness jumps from 0 to k A where a node first
+// touches, and Newton's method steps back and forth across that jump without converging (measured
+// on the static branch: a 3-cycle between no contact and a micrometre's crossing). With a
+// smoothing length g0 > 0 the law is regularised over the first g0 of a crossing (penalty below):
+// the force rises as k A d^2 / (2 g0), then k A (d - g0 / 2), continuous with its derivative.
 #pragma once
 
 #include <vector>
@@ -27,10 +33,17 @@ namespace snapjump::axi {
 using RimCone = core::ContainerFace;
 RimCone rim_cone(const MeshSpec& spec);
 
+// The penalty at a crossing of depth d >= 0 per unit k A: force (d, or regularised over the
+// smoothing length g0 > 0 as above) and energy (its integral from 0 to d).
+struct Penalty {
+  double force, energy;
+};
+Penalty penalty(double depth, double smoothing);
+
 class InnerSelfContact {
  public:
-  // stiffness: k [Pa/m].
-  InnerSelfContact(const Body& body, double stiffness);
+  // stiffness: k [Pa/m]; smoothing: g0 [m] (0: the plain law).
+  InnerSelfContact(const Body& body, double stiffness, double smoothing = 0.0);
 
   // f += the contact forces at positions x; returns the penalty energy [J].
   double add_forces(const Points& x, Points& f) const;
@@ -38,12 +51,14 @@ class InnerSelfContact {
   [[nodiscard]] double deepest() const { return deepest_; }
   [[nodiscard]] int touching() const { return touching_; }
   [[nodiscard]] double stiffness() const { return k_; }
+  [[nodiscard]] double smoothing() const { return smoothing_; }
   // Each inner node's share of the reference inner surface [m^2], in the order of inner().
   [[nodiscard]] const std::vector<double>& areas() const { return area_; }
 
  private:
   const Body* body_;
   double k_;
+  double smoothing_;
   double depth_limit_;
   std::vector<double> area_;  // each inner node's share of the reference inner surface [m^2]
   // Each segment's box of its three nodes widened by the depth limit, made once per add_forces:

@@ -21,6 +21,11 @@ using Vec = Eigen::VectorXd;
 using Sparse = Eigen::SparseMatrix<double>;
 using Triplets = std::vector<Eigen::Triplet<double>>;
 
+// The contacts' smoothing length over the element's thickness (axi/contact.hpp): a thousandth,
+// a thousand times the central differences' step, so that the differences see the regularised
+// law's stiffness, not a jump.
+constexpr double kSmoothing = 1e-3;
+
 // The equilibrium problem in the free degrees of freedom u (every node's r and z but the rim
 // face's, and the axis nodes' r): the residual dPi/du of the potential
 // Pi = W + dp V + the contacts' penalty energy, its stiffness, and the volume's gradient.
@@ -29,7 +34,8 @@ class Problem {
   Problem(const Body& body, bool contacts)
       : body_(body),
         contacts_(contacts),
-        self_(body, default_contact_stiffness(body)),
+        self_(body, default_contact_stiffness(body),
+              kSmoothing * body.spec().h / body.spec().through),
         cone_(rim_cone(body.spec())),
         eps_(1e-6 * body.spec().h / body.spec().through) {
     const std::size_t n = body.num_nodes();
@@ -97,7 +103,7 @@ class Problem {
     body_.internal_forces(x, f);
     body_.add_pressure_forces(x, dp, f);
   }
-  // The self-contact, and the cone as a penalty k A g^2 / 2 on the inner surface's nodes that
+  // The self-contact, and the cone as a penalty of the same law on the inner surface's nodes that
   // have crossed its rigid part by g.
   void contact_forces(const Points& x, Points& f) const {
     self_.add_forces(x, f);
@@ -108,7 +114,7 @@ class Problem {
       if (dof_z_[a] < 0) continue;
       const double g = cone_.gap(x.r[a], x.z[a], 0.0);
       if (!(g > 0.0) || cone_.along(x.r[a], x.z[a], 0.0) < cone_.s_min) continue;
-      const double push = self_.stiffness() * area[i] * g;
+      const double push = self_.stiffness() * area[i] * penalty(g, self_.smoothing()).force;
       f.r[a] -= push * cone_.nr();
       f.z[a] -= push * cone_.nz();
     }
@@ -240,8 +246,9 @@ class Tracer {
   StaticBranch run();
 
  private:
-  // Newton from the predictor s on the arc; the iterations it took, or nothing.
+  // Newton from the predictor s on the arc, damped; the iterations it took, or nothing.
   std::optional<int> correct(State& s, const Arc& arc);
+  double damped(const State& s, const Vec& d, double residual);
   BranchPoint point(const State& s, int iterations);
   bool at_end_dp(State& s, const State& before);
   // Reports the points up to (not including) `end` not yet reported (BranchOptions::progress).
@@ -294,10 +301,29 @@ std::optional<int> Tracer::correct(State& s, const Arc& arc) {
     rhs[n] = -c;
     const Vec d = lu.solve(rhs);
     if (!d.allFinite()) return std::nullopt;
-    s.u += d.head(n);
-    s.q += d[n];
+    const double step = damped(s, d, r.norm());
+    s.u += step * d.head(n);
+    s.q += step * d[n];
   }
   return std::nullopt;
+}
+
+// The share of Newton's correction d to take from s: the first of 1, 1/2, ..., 1/1024 at which the
+// residual is smaller than `residual`, or all of it where none is (the corrector then goes on
+// as undamped Newton would). Where a node first touches, the contacts' stiffness is not in the
+// Jacobian of a state that touches nothing, and the full correction crosses far past the touch.
+double Tracer::damped(const State& s, const Vec& d, double residual) {
+  const int n = problem_.dofs();
+  double step = 1.0;
+  for (int k = 0; k <= 10; ++k, step *= 0.5) {
+    problem_.scatter(s.u + step * d.head(n), x_);
+    try {
+      const Vec r = problem_.residual(x_, (s.q + step * d[n]) * o_.p_ref);
+      if (r.allFinite() && r.norm() < residual) return step;
+    } catch (const fem::InvertedElement&) {
+    }
+  }
+  return 1.0;
 }
 
 BranchPoint Tracer::point(const State& s, int iterations) {

@@ -7,15 +7,17 @@
 // volume v = V / V0 and pressure q = dp / p_ref: each new point solves the equilibrium together
 // with (v - v_k) t_v + (q - q_k) t_q = ds, t being the unit secant of the last two points. This
 // passes the maximum of dp (buckling, p_c) and, where the volume turns back too, that turn.
-// Newton's method on the bordered system; the stiffness from central differences of the forces,
+// Newton's method on the bordered system, each correction halved until it lowers the residual
+// (where one does); the stiffness from central differences of the forces,
 // node colours at a time (two nodes share a colour when no element holds both), and the
 // contacts' part node by node (they couple nodes that no element joins).
 //
 // The contacts are those of the dynamics (axi/contact.hpp), made quasi-static: the inner surface's
-// self-contact penalty as it is, and the container's cone as a penalty of the same stiffness on
-// the inner surface's nodes (in the dynamics it acts exactly; a static solve needs a smooth
-// energy). Every converged point is checked for folds (fem::FoldedElement stops the branch there,
-// and the branch up to it is kept).
+// self-contact penalty regularised over its first thousandth of an element's thickness (the plain
+// law's stiffness jumps where a node first touches, and undamped Newton cycles across the jump),
+// and the container's cone as a penalty of the same law on the inner surface's nodes (in the
+// dynamics it acts exactly; a static solve needs a smooth energy). Every converged point is checked
+// for folds (fem::FoldedElement stops the branch there, and the branch up to it is kept).
 //
 // p_c is the first maximum of dp. After it the branch may fall and rise more than once (a partly
 // inverted shell can hold at a suction of its own); two of its minima matter under pressure

@@ -21,18 +21,21 @@ constexpr double kG = config::kStandardGravity;
 constexpr char kAxiMagic[] = "axisymmetric-1";
 
 axi::Body make_body(const config::Case& c, const Numerics& n) {
-  return axi::Body(axi::MeshSpec{.R = c.shell.R,
-                                 .h = c.shell.h,
-                                 .phi = c.shell.phi,
-                                 .through = n.axi_through,
-                                 .along = n.axi_along,
-                                 .reduced_bulk = n.reduced_bulk,
-                                 .crease_fan_from_rim = n.axi_crease_fan,
-                                 .crease_fan_band = n.axi_crease_fan_band,
-                                 .fan_layer = n.axi_fan_layer,
-                                 .crease_seed_from_rim = n.axi_crease_seed,
-                                 .crease_seed_depth = n.axi_crease_seed_depth},
-                   body_material(c.material));
+  return axi::Body(
+      axi::MeshSpec{.R = c.shell.R,
+                    .h = c.shell.h,
+                    .phi = c.shell.phi,
+                    .through = n.axi_through,
+                    .along = n.axi_along,
+                    .reduced_bulk = n.reduced_bulk,
+                    .crease_fan_from_rim = n.axi_crease_fan,
+                    .crease_fan_band = n.axi_crease_fan_band,
+                    .fan_layer = n.axi_fan_layer,
+                    .crease_seeds_from_rim = n.axi_crease_seed > 0.0
+                                                 ? std::vector<double>{n.axi_crease_seed}
+                                                 : std::vector<double>{},
+                    .crease_seed_depth = n.axi_crease_seed_depth},
+      body_material(c.material));
 }
 
 }  // namespace

@@ -22,6 +22,8 @@ Body make_body() {
               fem::Material::from_young(1.2e6, 0.45, 1160.0));
 }
 
+void check_self_contact_gradient(const Body& b, const Points& x, double depth, double smoothing);
+
 // An inner node put 0.1 mm across the next segment but one, along that segment's normal: a kink
 // of the inner surface folded through itself.
 TEST(AxiContact, SelfContactForcesAreMinusTheGradientOfItsEnergyAndPushRingAgainstRing) {
@@ -42,7 +44,15 @@ TEST(AxiContact, SelfContactForcesAreMinusTheGradientOfItsEnergyAndPushRingAgain
   // Into the material: minus the normal into the cavity, (-tz, tr) / |t|.
   x.r[in[a]] = cr + depth * tz / tn;
   x.z[in[a]] = cz - depth * tr / tn;
-  const InnerSelfContact contact(b, default_contact_stiffness(b));
+  // The plain law, a smoothing length shorter than the crossing and one longer.
+  for (const double smoothing : {0.0, 2e-5, 5e-4}) {
+    SCOPED_TRACE(smoothing);
+    check_self_contact_gradient(b, x, depth, smoothing);
+  }
+}
+
+void check_self_contact_gradient(const Body& b, const Points& x, double depth, double smoothing) {
+  const InnerSelfContact contact(b, default_contact_stiffness(b), smoothing);
   Points f{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0)};
   const double energy = contact.add_forces(x, f);
   // The kink drags the nodes next to the moved one across too: at least the crossing built in.
@@ -79,6 +89,32 @@ TEST(AxiContact, SelfContactForcesAreMinusTheGradientOfItsEnergyAndPushRingAgain
   Points g{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0)};
   EXPECT_EQ(contact.add_forces(b.nodes(), g), 0.0);
   EXPECT_EQ(contact.touching(), 0);
+}
+
+// The regularised law: the plain one (k A d, k A d^2 / 2) at no smoothing; with a smoothing length
+// g0 the energy's derivative is the force and the force's is continuous (0 at first touch, 1 from
+// g0 on), so a Newton solver sees no jump of the stiffness.
+TEST(AxiContact, TheSmoothedPenaltyIsThePlainOneWithAContinuousStiffness) {
+  for (const double d : {1e-9, 3e-6, 0.7}) {
+    EXPECT_EQ(penalty(d, 0.0).force, d);
+    EXPECT_DOUBLE_EQ(penalty(d, 0.0).energy, 0.5 * d * d);
+  }
+  const double g0 = 1e-6, e = 1e-12;
+  const auto stiffness = [&](double d) {
+    return (penalty(d + e, g0).force - penalty(d - e, g0).force) / (2.0 * e);
+  };
+  for (const double d : {0.1e-6, 0.5e-6, 0.99e-6, 1.01e-6, 2e-6, 1e-4}) {
+    const double de = 1e-3 * std::min(d, std::abs(d - g0));
+    const double slope = (penalty(d + de, g0).energy - penalty(d - de, g0).energy) / (2.0 * de);
+    EXPECT_NEAR(slope, penalty(d, g0).force, 1e-6 * penalty(d, g0).force) << d;
+  }
+  EXPECT_NEAR(penalty(g0 * (1 - 1e-9), g0).force, penalty(g0 * (1 + 1e-9), g0).force, 1e-14);
+  EXPECT_NEAR(penalty(g0 * (1 - 1e-9), g0).energy, penalty(g0 * (1 + 1e-9), g0).energy, 1e-20);
+  EXPECT_NEAR(stiffness(g0 - 1e-10), 1.0, 1e-3);
+  EXPECT_NEAR(stiffness(g0 + 1e-10), 1.0, 1e-3);
+  EXPECT_NEAR(stiffness(2e-11), 0.0, 1e-4);
+  // Past g0 the law is the plain one moved by g0 / 2.
+  EXPECT_NEAR(penalty(5e-6, g0).force, 5e-6 - 0.5e-6, 1e-18);
 }
 
 // A point moving towards the container's face ends its step on it with its tangential velocity

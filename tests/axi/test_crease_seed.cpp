@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -26,7 +27,7 @@ const double kPhi = 80.0 * kPi / 180.0;
 
 MeshSpec spec(double from_rim, double depth, int through = 4, int along = 70) {
   MeshSpec s{kR, kH, kPhi, through, along};
-  s.crease_seed_from_rim = from_rim;
+  if (from_rim != 0.0) s.crease_seeds_from_rim = {from_rim};
   s.crease_seed_depth = depth;
   return s;
 }
@@ -64,6 +65,35 @@ TEST(CreaseSeed, WithoutANotchTheSolidAndItsSurfacesAreTheStructuredMeshs) {
     const double element = (kR - 0.5 * kH) * kPhi / along;
     EXPECT_LE(std::abs(seeded.crease_seed_from_rim() - 3.35e-3), 0.5 * element + 1e-12);
     EXPECT_NO_THROW(seeded.check_folds(seeded.nodes()));
+  }
+}
+
+// Two rosettes, as many as the block's width allows: the same solid, each root with its four
+// kites, listed from the rim inwards; blocks that would overlap are refused.
+TEST(CreaseSeed, TwoRosettesAreTheStructuredMeshsSolidWithFourElementsAtEachRoot) {
+  for (const auto& [through, along] : {std::pair{4, 140}, {8, 140}}) {
+    SCOPED_TRACE(testing::Message() << through << " x " << along);
+    const auto plain = body(spec(0.0, 0.0, through, along));
+    auto two = spec(3.35e-3, 0.0, through, along);
+    two.crease_seeds_from_rim = {2.0e-3, 3.35e-3};
+    const auto seeded = body(two);
+    EXPECT_EQ(seeded.num_elements(), plain.num_elements() + 8);
+    EXPECT_NEAR(seeded.reference_volume() / plain.reference_volume(), 1.0, 1e-12);
+    EXPECT_NEAR(seeded.total_mass() / plain.total_mass(), 1.0, 1e-12);
+    ASSERT_EQ(seeded.crease_seeds().size(), 2U);
+    const double element = (kR - 0.5 * kH) * kPhi / along;
+    EXPECT_LE(std::abs(seeded.from_rim(seeded.crease_seeds()[0]) - 2.0e-3), 0.5 * element + 1e-12);
+    EXPECT_LE(std::abs(seeded.from_rim(seeded.crease_seeds()[1]) - 3.35e-3), 0.5 * element + 1e-12);
+    for (const int root : seeded.crease_seeds()) EXPECT_EQ(elements_at(seeded, root), 4);
+    EXPECT_NO_THROW(seeded.check_folds(seeded.nodes()));
+  }
+  auto overlapping = spec(3.35e-3, 0.0);  // 4 x 70: 0.5 mm elements, roots 3 elements apart
+  overlapping.crease_seeds_from_rim = {3.35e-3, 1.9e-3};
+  try {
+    body(overlapping);
+    ADD_FAILURE() << "overlapping rosettes were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("overlap"), std::string::npos) << e.what();
   }
 }
 
