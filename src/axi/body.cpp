@@ -187,13 +187,16 @@ Body::Body(const MeshSpec& spec, const fem::Material& material) : spec_(spec), m
   for (double m : mass_) total_mass_ += m;
 }
 
+double Body::corner_from_rim(int e, const std::vector<double>& theta) const {
+  return inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * e)]);
+}
+
 int Body::nearest_inner_corner(double from_rim, int first, int last,
                                const std::vector<double>& theta) const {
   int nearest = -1;
   double best = std::numeric_limits<double>::infinity();
   for (int e = first; e <= last; ++e) {
-    const double d =
-        std::abs(inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * e)]) - from_rim);
+    const double d = std::abs(corner_from_rim(e, theta) - from_rim);
     if (d < best) best = d, nearest = e;
   }
   return nearest;
@@ -202,7 +205,6 @@ int Body::nearest_inner_corner(double from_rim, int first, int last,
 // The root nearest MeshSpec::crease_fan_from_rim and, with a band, every second corner node
 // within it get a fan each; the lattice's nodes the blocks no longer hold are dropped.
 void Body::add_crease_fans(const std::vector<double>& theta) {
-  const auto from_rim = [&](int e) { return inner_arc_from_rim(spec_, theta[2 * e]); };
   // The element index along whose first corner is the root.
   const int root = nearest_inner_corner(spec_.crease_fan_from_rim, 1, spec_.along - 1, theta);
   if (spec_.through < 2 || root < 0) {
@@ -212,10 +214,12 @@ void Body::add_crease_fans(const std::vector<double>& theta) {
   }
   // Every second corner node within half the band on either side: the blocks do not overlap.
   const double half = 0.5 * spec_.crease_fan_band;
-  const double centre = from_rim(root);
+  const double centre = corner_from_rim(root, theta);
   add_fan_block(root, theta);
-  for (int e = root - 2; e >= 1 && from_rim(e) <= centre + half; e -= 2) add_fan_block(e, theta);
-  for (int e = root + 2; e < spec_.along && from_rim(e) >= centre - half; e += 2) {
+  for (int e = root - 2; e >= 1 && corner_from_rim(e, theta) <= centre + half; e -= 2) {
+    add_fan_block(e, theta);
+  }
+  for (int e = root + 2; e < spec_.along && corner_from_rim(e, theta) >= centre - half; e += 2) {
     add_fan_block(e, theta);
   }
   crease_root_ = 2 * root * (2 * spec_.through + 1);
@@ -398,8 +402,7 @@ void Body::add_crease_seeds(const std::vector<double>& theta) {
       throw std::invalid_argument(fmt::format(
           "two seeded creases' rosettes overlap: their roots {:.3g} and {:.3g} mm from the rim "
           "are {} elements apart, and each takes two elements on either side",
-          1e3 * inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * roots[k - 1])]),
-          1e3 * inner_arc_from_rim(spec_, theta[static_cast<std::size_t>(2 * roots[k])]),
+          1e3 * corner_from_rim(roots[k - 1], theta), 1e3 * corner_from_rim(roots[k], theta),
           roots[k] - roots[k - 1]));
     }
   }

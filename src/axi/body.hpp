@@ -176,6 +176,9 @@ class Body {
   // the first call for that point.
   std::function<int(const std::array<double, 2>&)> block_nodes(int i0, int width,
                                                                const std::vector<double>& theta);
+  // The arc length from the rim [m] of element e's first inner corner node (lattice (2e, 0)), on
+  // the reference inner surface.
+  [[nodiscard]] double corner_from_rim(int e, const std::vector<double>& theta) const;
   // The element index e in [first, last] whose first inner corner node (lattice (2e, 0)) lies
   // nearest the arc length from_rim [m] from the rim; -1 when the range is empty.
   [[nodiscard]] int nearest_inner_corner(double from_rim, int first, int last,

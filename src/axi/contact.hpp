@@ -17,9 +17,10 @@
 //
 // A Newton solver needs more: the plain law's stiffness jumps from 0 to k A where a node first
 // touches, and Newton's method steps back and forth across that jump without converging (measured
-// on the static branch: a 3-cycle between no contact and a micrometre's crossing). With a
-// smoothing length g0 > 0 the law is regularised over the first g0 of a crossing (penalty below):
-// the force rises as k A d^2 / (2 g0), then k A (d - g0 / 2), continuous with its derivative.
+// on the static branch: a cycle of three to five iterations between no contact and a few
+// micrometres' crossing). With a smoothing length g0 > 0 the law is regularised over the first
+// g0 of a crossing (penalty below): the force rises as k A d^2 / (2 g0), then k A (d - g0 / 2),
+// continuous with its derivative.
 #pragma once
 
 #include <vector>

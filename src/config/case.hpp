@@ -145,7 +145,7 @@ struct Numerics {
   std::optional<int> fan_layer;
   // Axisymmetric: a seeded crease, the inner corner node nearest this arc length from the rim
   // given a rosette of four elements and moved into the solid by crease_seed_depth
-  // (axi::MeshSpec::crease_seed_from_rim); none when absent.
+  // (axi::MeshSpec::crease_seeds_from_rim); none when absent.
   std::optional<double> crease_seed;        // [m]
   std::optional<double> crease_seed_depth;  // [m]; 0 when absent
   std::optional<double> grid_spacing;       // [m]; from the resolution preset (a fraction of h)
