@@ -348,9 +348,15 @@ void check_same_numerics(const nlohmann::json& before_in, const nlohmann::json& 
   if (before.value("model", "3d") == "axisymmetric" && !before.contains("fan_layer")) {
     before["fan_layer"] = 0;
   }
-  if (before.value("model", "3d") == "axisymmetric" && !before.contains("crease_seed_from_rim")) {
-    before["crease_seed_from_rim"] = nullptr;
-    before["crease_seed_depth"] = 0.0;
+  if (before.value("model", "3d") == "axisymmetric" && !before.contains("crease_seeds_from_rim")) {
+    // Summaries carried one seeded root, or none, as crease_seed_from_rim.
+    auto seeds = nlohmann::json::array();
+    if (before.contains("crease_seed_from_rim") && !before["crease_seed_from_rim"].is_null()) {
+      seeds.push_back(before["crease_seed_from_rim"]);
+    }
+    before.erase("crease_seed_from_rim");
+    before["crease_seeds_from_rim"] = seeds;
+    if (!before.contains("crease_seed_depth")) before["crease_seed_depth"] = 0.0;
   }
   std::string differ;
   for (const auto& [key, value] : before.items()) {

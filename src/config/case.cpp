@@ -105,6 +105,11 @@ constexpr KeySpec kKeys[] = {
      "axisymmetric: arc length from the rim along the inner surface of a seeded crease's root, "
      "given a rosette of four elements (none when absent)",
      nullptr, +[](Case& c) { return &c.numerics.crease_seed; }},
+    {"numerics", "second_crease_seed", "second-crease-seed", Dimension::Length, false, std::nullopt,
+     "", "2.1 mm",
+     "axisymmetric: with numerics.crease_seed, the arc length from the rim of a second seeded "
+     "root, its own rosette notched as deep (none when absent)",
+     nullptr, +[](Case& c) { return &c.numerics.second_crease_seed; }},
     {"numerics", "crease_seed_depth", "crease-seed-depth", Dimension::Length, false, std::nullopt,
      "", "25 um",
      "axisymmetric: with numerics.crease_seed, how far its node is moved into the solid, a notch "
@@ -525,6 +530,11 @@ Case build(const Reader& r, Case c) {
       !(c.numerics.crease_seed && (c.numerics.crease_fan || c.numerics.fan_layer.value_or(0) > 0)),
       "numerics.crease_seed gives one node a rosette of its own: give neither numerics.crease_fan "
       "nor numerics.fan_layer with it");
+  if (c.numerics.second_crease_seed) {
+    positive("numerics", "second_crease_seed", *c.numerics.second_crease_seed);
+    check(c.numerics.crease_seed.has_value(),
+          "numerics.second_crease_seed is a second rosette beside numerics.crease_seed: give both");
+  }
   if (c.numerics.crease_seed_depth) {
     check(*c.numerics.crease_seed_depth >= 0.0 && std::isfinite(*c.numerics.crease_seed_depth),
           "numerics.crease_seed_depth must be zero or positive");

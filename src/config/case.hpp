@@ -146,9 +146,11 @@ struct Numerics {
   // Axisymmetric: a seeded crease, the inner corner node nearest this arc length from the rim
   // given a rosette of four elements and moved into the solid by crease_seed_depth
   // (axi::MeshSpec::crease_seeds_from_rim); none when absent.
-  std::optional<double> crease_seed;        // [m]
-  std::optional<double> crease_seed_depth;  // [m]; 0 when absent
-  std::optional<double> grid_spacing;       // [m]; from the resolution preset (a fraction of h)
+  std::optional<double> crease_seed;  // [m]
+  // And a second one, its own rosette, notched by the same depth (a shell that creases twice).
+  std::optional<double> second_crease_seed;  // [m]
+  std::optional<double> crease_seed_depth;   // [m]; 0 when absent
+  std::optional<double> grid_spacing;        // [m]; from the resolution preset (a fraction of h)
   // Quadratic elements across h; from the resolution preset when absent (3D: coarse and default
   // 1, fine 2; axisymmetric: 2, 4, 8).
   std::optional<int> elements_through_thickness;

@@ -1,6 +1,7 @@
 #include "popper/axi_shell.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,21 +22,18 @@ constexpr double kG = config::kStandardGravity;
 constexpr char kAxiMagic[] = "axisymmetric-1";
 
 axi::Body make_body(const config::Case& c, const Numerics& n) {
-  return axi::Body(
-      axi::MeshSpec{.R = c.shell.R,
-                    .h = c.shell.h,
-                    .phi = c.shell.phi,
-                    .through = n.axi_through,
-                    .along = n.axi_along,
-                    .reduced_bulk = n.reduced_bulk,
-                    .crease_fan_from_rim = n.axi_crease_fan,
-                    .crease_fan_band = n.axi_crease_fan_band,
-                    .fan_layer = n.axi_fan_layer,
-                    .crease_seeds_from_rim = n.axi_crease_seed > 0.0
-                                                 ? std::vector<double>{n.axi_crease_seed}
-                                                 : std::vector<double>{},
-                    .crease_seed_depth = n.axi_crease_seed_depth},
-      body_material(c.material));
+  return axi::Body(axi::MeshSpec{.R = c.shell.R,
+                                 .h = c.shell.h,
+                                 .phi = c.shell.phi,
+                                 .through = n.axi_through,
+                                 .along = n.axi_along,
+                                 .reduced_bulk = n.reduced_bulk,
+                                 .crease_fan_from_rim = n.axi_crease_fan,
+                                 .crease_fan_band = n.axi_crease_fan_band,
+                                 .fan_layer = n.axi_fan_layer,
+                                 .crease_seeds_from_rim = n.axi_crease_seeds,
+                                 .crease_seed_depth = n.axi_crease_seed_depth},
+                   body_material(c.material));
 }
 
 }  // namespace
@@ -77,18 +75,25 @@ std::string AxiShell::describe() const {
                           body_.crease_fans(), 1e3 * body_.spec().crease_fan_band)
             : std::string());
   }
-  if (body_.crease_seed() >= 0) {
+  if (!body_.crease_seeds().empty()) {
+    std::vector<std::string> at;
+    for (const int root : body_.crease_seeds())
+      at.push_back(fmt::format("{:.3g}", 1e3 * body_.from_rim(root)));
+    const bool one = at.size() == 1;
     text += fmt::format(
-        "  seeded      a crease's root at the inner surface's node {:.3g} mm from the rim, a "
-        "rosette of four elements around it, notched {:.3g} um into the solid "
-        "(numerics.crease_seed, numerics.crease_seed_depth)\n",
-        1e3 * body_.crease_seed_from_rim(), 1e6 * s.crease_seed_depth);
+        "  seeded      {} at the inner surface's node{} {} mm from the rim, a "
+        "rosette of four elements around {}, notched {:.3g} um into the solid "
+        "(numerics.crease_seed{}, numerics.crease_seed_depth)\n",
+        one ? "a crease's root" : "creases' roots", one ? "" : "s", fmt::join(at, " and "),
+        one ? "it" : "each", 1e6 * s.crease_seed_depth, one ? "" : ", numerics.second_crease_seed");
   }
   return text;
 }
 
 nlohmann::json AxiShell::numerics_json() const {
   const auto& s = body_.spec();
+  auto seeds_from_rim = nlohmann::json::array();
+  for (const int root : body_.crease_seeds()) seeds_from_rim.push_back(body_.from_rim(root));
   return {
       {"model", "axisymmetric"},
       {"bulk_integration", s.reduced_bulk ? "reduced" : "full"},
@@ -100,8 +105,7 @@ nlohmann::json AxiShell::numerics_json() const {
        body_.crease_root() < 0 ? nlohmann::json() : nlohmann::json(body_.crease_root_from_rim())},
       {"crease_fans", body_.crease_fans()},
       {"fan_layer", s.fan_layer},
-      {"crease_seed_from_rim",
-       body_.crease_seed() < 0 ? nlohmann::json() : nlohmann::json(body_.crease_seed_from_rim())},
+      {"crease_seeds_from_rim", seeds_from_rim},
       {"crease_seed_depth", s.crease_seed_depth},
       {"dt", dynamics_.dt()},
       {"omega_max", omega_max_}};

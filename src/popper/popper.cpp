@@ -70,7 +70,9 @@ Numerics resolve_numerics(const config::Case& c) {
                     "numerics.model = \"axisymmetric\"",
                     c.source));
   }
-  n.axi_crease_seed = c.numerics.crease_seed.value_or(0.0);
+  for (const auto& seed : {c.numerics.crease_seed, c.numerics.second_crease_seed}) {
+    if (seed) n.axi_crease_seeds.push_back(*seed);
+  }
   n.axi_crease_seed_depth = c.numerics.crease_seed_depth.value_or(0.0);
   n.axi_crease_fan = c.numerics.crease_fan.value_or(0.0);
   n.axi_crease_fan_band = c.numerics.crease_fan_band.value_or(0.0);

@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "config/case.hpp"
 #include "core/rigid_body.hpp"
@@ -40,8 +41,8 @@ struct Numerics {
   double axi_crease_fan = 0.0;                  // axisymmetric: crease root from the rim [m]
   double axi_crease_fan_band = 0.0;             // axisymmetric: roots within this band [m]
   int axi_fan_layer = 0;  // axisymmetric: layers tiled so that every inner corner node is a root
-  double axi_crease_seed = 0.0;               // axisymmetric: seeded crease's root from the rim [m]
-  double axi_crease_seed_depth = 0.0;         // axisymmetric: its notch [m]
+  std::vector<double> axi_crease_seeds;  // axisymmetric: seeded creases' roots from the rim [m]
+  double axi_crease_seed_depth = 0.0;    // axisymmetric: their notch [m]
   double time_step_factor = kTimeStepFactor;  // elastic time step factor (3D)
   double probe_interval = 1e-4;               // [s] between samples of the time series
   double snapshot_interval = 5e-3;            // [s] between VTU snapshots

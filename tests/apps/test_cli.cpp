@@ -725,10 +725,30 @@ TEST(Cli, ASeededCreaseIsPrintedAndKeptInTheSummaryAndRefusedWhereTheMeshCannotT
   std::ifstream in(dir / "summary.json");
   const auto n = nlohmann::json::parse(in)["numerics"];
   // 42 elements along 29 mm x 80 deg: the inner corner node nearest 3 mm is the third.
-  EXPECT_NEAR(n["crease_seed_from_rim"].get<double>(), 3 * 29e-3 * 80.0 / 180.0 * 3.14159265 / 42,
-              1e-6);
+  const double element = 29e-3 * 80.0 / 180.0 * 3.14159265 / 42;
+  ASSERT_EQ(n["crease_seeds_from_rim"].size(), 1U);
+  EXPECT_NEAR(n["crease_seeds_from_rim"][0].get<double>(), 3 * element, 1e-6);
   EXPECT_DOUBLE_EQ(n["crease_seed_depth"].get<double>(), 25e-6);
   EXPECT_EQ(n["elements"].get<int>(), 2 * 42 + 4);
+  // A second rosette, given before the first in arc length: the summary lists them from the rim.
+  const auto two =
+      run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--element-size", "1mm",
+           "--crease-seed", "7mm", "--second-crease-seed", "3mm", "--crease-seed-depth", "25um",
+           "--end-time", "1ms", "--output", (dir / "two").string()});
+  ASSERT_EQ(two.code, kExitOk) << two.err;
+  EXPECT_NE(two.out.find("creases' roots at the inner surface's nodes"), std::string::npos)
+      << two.out;
+  std::ifstream in_two(dir / "two" / "summary.json");
+  const auto n2 = nlohmann::json::parse(in_two)["numerics"];
+  ASSERT_EQ(n2["crease_seeds_from_rim"].size(), 2U);
+  EXPECT_NEAR(n2["crease_seeds_from_rim"][0].get<double>(), 3 * element, 1e-6);
+  EXPECT_NEAR(n2["crease_seeds_from_rim"][1].get<double>(), 7 * element, 1e-6);
+  EXPECT_EQ(n2["elements"].get<int>(), 2 * 42 + 8);
+  const auto alone = run({"run", "--model", "axisymmetric", "--resolution", "coarse",
+                          "--element-size", "1mm", "--second-crease-seed", "3mm", "--end-time",
+                          "1ms", "--output", (dir / "alone").string()});
+  EXPECT_EQ(alone.code, kExitBadInput);
+  EXPECT_NE(alone.err.find("numerics.second_crease_seed"), std::string::npos) << alone.err;
   // The coarse preset's own elements are twice as long as deep.
   const auto flat =
       run({"run", "--model", "axisymmetric", "--resolution", "coarse", "--crease-seed", "3mm",

@@ -276,15 +276,22 @@ TEST(CaseFile, ACreaseFanIsALengthOfTheAxisymmetricMesh) {
 TEST(CaseFile, ASeededCreaseIsALengthAndANotchOfTheAxisymmetricMesh) {
   const auto c = parse_case(kMinimal +
                                 "[numerics]\nmodel = \"axisymmetric\"\ncrease_seed = \"3.35 mm\"\n"
-                                "crease_seed_depth = \"25 um\"\n",
+                                "crease_seed_depth = \"25 um\"\nsecond_crease_seed = \"2.1 mm\"\n",
                             "case.toml");
-  ASSERT_TRUE(c.numerics.crease_seed && c.numerics.crease_seed_depth);
+  ASSERT_TRUE(c.numerics.crease_seed && c.numerics.crease_seed_depth &&
+              c.numerics.second_crease_seed);
   EXPECT_DOUBLE_EQ(*c.numerics.crease_seed, 3.35e-3);
+  EXPECT_DOUBLE_EQ(*c.numerics.second_crease_seed, 2.1e-3);
   EXPECT_DOUBLE_EQ(*c.numerics.crease_seed_depth, 25e-6);
   // Written and read back.
   const auto r = parse_case(to_toml(c), "written.toml");
   EXPECT_EQ(r.numerics.crease_seed, c.numerics.crease_seed);
   EXPECT_EQ(r.numerics.crease_seed_depth, c.numerics.crease_seed_depth);
+  EXPECT_EQ(r.numerics.second_crease_seed, c.numerics.second_crease_seed);
+  expect_error(kMinimal + "[numerics]\nsecond_crease_seed = \"2 mm\"\n",
+               {"numerics.second_crease_seed", "give both"});
+  expect_error(kMinimal + "[numerics]\ncrease_seed = \"3 mm\"\nsecond_crease_seed = \"0 mm\"\n",
+               {"numerics.second_crease_seed"});
   expect_error(kMinimal + "[numerics]\ncrease_seed = \"3 s\"\n", {"numerics.crease_seed"});
   expect_error(kMinimal + "[numerics]\ncrease_seed = \"-3 mm\"\n", {"numerics.crease_seed"});
   expect_error(kMinimal + "[numerics]\ncrease_seed_depth = \"25 um\"\n",

@@ -56,8 +56,10 @@ TEST(Numerics, ASeededCreaseIsTheAxisymmetricModels) {
   }
   c.numerics.model = config::Model::Axisymmetric;
   const auto n = resolve_numerics(c);
-  EXPECT_EQ(n.axi_crease_seed, 3e-3);
+  EXPECT_EQ(n.axi_crease_seeds, std::vector<double>{3e-3});
   EXPECT_EQ(n.axi_crease_seed_depth, 25e-6);
+  c.numerics.second_crease_seed = 5e-3;
+  EXPECT_EQ(resolve_numerics(c).axi_crease_seeds, (std::vector<double>{3e-3, 5e-3}));
 }
 
 // A fan layer belongs to the axisymmetric mesh too, and not with a crease fan.
