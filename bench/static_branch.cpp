@@ -1,7 +1,7 @@
 // The clamped cap's quasi-static pressure-volume branch in the axisymmetric model
 // (axi/static_branch.hpp): p_c, p_- and, with --csv, every point (V / V0, dp / p_c Zoelly, apex
 // displacement, Newton iterations, deepest self-contact crossing, the inner surface's crease
-// measure and where it is, axi/surface_stretch.hpp).
+// measure and where it is, axi/surface_stretch.hpp, and how many separate regions touch).
 //
 //   build/static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V_OVER_V0] [--grading G]
 //                       [--end-dp DP_OVER_P_ZOELLY] [--crease-fan FROM_RIM_mm [--crease-fan-band
@@ -99,13 +99,14 @@ int run(int argc, char** argv) {
   if (out)
     std::fprintf(
         out,
-        "v,dp_over_pc,apex_z_mm,iterations,contact_depth_um,crease_ratio,crease_from_rim_mm\n");
+        "v,dp_over_pc,apex_z_mm,iterations,contact_depth_um,crease_ratio,crease_from_rim_mm,"
+        "contact_regions\n");
   double V0 = body.cavity_volume(body.nodes());
   o.progress = [&](const axi::BranchPoint& p) {
     if (out) {
-      std::fprintf(out, "%.8g,%.8g,%.8g,%d,%.4g,%.5g,%.4g\n", p.volume / V0, p.dp / pc,
+      std::fprintf(out, "%.8g,%.8g,%.8g,%d,%.4g,%.5g,%.4g,%d\n", p.volume / V0, p.dp / pc,
                    1e3 * p.apex_z, p.iterations, 1e6 * p.contact_depth, p.crease_ratio,
-                   1e3 * p.crease_from_rim);
+                   1e3 * p.crease_from_rim, p.contact_regions);
     }
   };
   const auto t0 = std::chrono::steady_clock::now();

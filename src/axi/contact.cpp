@@ -84,6 +84,8 @@ double InnerSelfContact::add_forces(const Points& x, Points& f) const {
   const std::size_t n = in.size();
   deepest_ = 0.0;
   touching_ = 0;
+  regions_ = 0;
+  std::size_t last = 0;  // the last touching node, in the order of inner()
   double energy = 0.0;
   // The segment from inner node k holds k, k + 1, k + 2 (from the axis to the rim).
   boxes_.resize(n / 2);
@@ -129,6 +131,8 @@ double InnerSelfContact::add_forces(const Points& x, Points& f) const {
       }
       energy += k_ * area_[a] * law.energy;
       deepest_ = std::max(deepest_, -g);
+      if (touching_ == 0 || a > last + kRegionGap) ++regions_;
+      last = a;
       ++touching_;
     }
   }

@@ -51,6 +51,10 @@ class InnerSelfContact {
   // The deepest crossing found by the last add_forces [m] (0 when none), and how many nodes.
   [[nodiscard]] double deepest() const { return deepest_; }
   [[nodiscard]] int touching() const { return touching_; }
+  // And in how many separate regions of the inner surface (touching nodes more than
+  // kRegionGap apart along it, two elements' edges, belong to different ones: two creases).
+  [[nodiscard]] int regions() const { return regions_; }
+  static constexpr std::size_t kRegionGap = 4;
   [[nodiscard]] double stiffness() const { return k_; }
   [[nodiscard]] double smoothing() const { return smoothing_; }
   // Each inner node's share of the reference inner surface [m^2], in the order of inner().
@@ -70,6 +74,7 @@ class InnerSelfContact {
   mutable std::vector<Box> boxes_;
   mutable double deepest_ = 0.0;
   mutable int touching_ = 0;
+  mutable int regions_ = 0;
 };
 
 // The penalty's default stiffness: the P-wave modulus over the thickness of one element, so that

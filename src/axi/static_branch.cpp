@@ -10,6 +10,7 @@
 #include <numbers>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "axi/contact.hpp"
 #include "axi/surface_stretch.hpp"
@@ -88,10 +89,11 @@ class Problem {
     return gather(f);
   }
   [[nodiscard]] Triplets stiffness(const Points& x, double dp) const;
-  [[nodiscard]] double contact_depth(const Points& x) const {
+  // The self-contact's deepest crossing [m] and how many separate regions touch.
+  [[nodiscard]] std::pair<double, int> self_contact(const Points& x) const {
     Points f = zero();
     self_.add_forces(x, f);
-    return self_.deepest();
+    return {self_.deepest(), self_.regions()};
   }
 
  private:
@@ -330,13 +332,10 @@ BranchPoint Tracer::point(const State& s, int iterations) {
   problem_.scatter(s.u, x_);
   const int apex = body_.apex();
   const auto crease = largest_compressed_ratio(inner_surface_stretches(body_, x_));
-  return {s.v * V0_,
-          s.q * o_.p_ref,
-          x_.z[apex] - body_.nodes().z[apex],
-          iterations,
-          o_.contacts ? problem_.contact_depth(x_) : 0.0,
-          crease.ratio,
-          crease.from_rim};
+  const auto [depth, regions] = o_.contacts ? problem_.self_contact(x_) : std::pair(0.0, 0);
+  return {s.v * V0_,    s.q * o_.p_ref, x_.z[apex] - body_.nodes().z[apex],
+          iterations,   depth,          regions,
+          crease.ratio, crease.from_rim};
 }
 
 // The extremum of dp among points[i - 1 .. i + 1] by a parabola in the arclength of (v, q).
@@ -425,11 +424,21 @@ StaticBranch Tracer::run() {
   // shorter step (below).
   std::optional<Walk> before_last;
   int steps_back = 0;
+  // Where the last step closed a crease (its point has more separate regions of the inner surface
+  // in self-contact than the one before), the secant cuts the corner between the branch with the
+  // crease open and the one with it closed, and points back along the second towards the touch
+  // and onto the first: the walk goes on as at its start, from the point, under volume control
+  // towards inversion, and keeps the step only if the crease stays closed.
+  bool from_touch = false;
+  const auto touched = [&b] {
+    return b.points.size() > 1 &&
+           b.points.back().contact_regions > b.points.end()[-2].contact_regions;
+  };
   while (static_cast<int>(b.points.size()) < o_.max_points) {
     State trial = s;
-    // The first step: volume control.
+    // The first step, and the first from a touch: volume control, the volume decreasing.
     Arc arc{s.u, Vec::Zero(s.u.size()), s.v, s.q, -1.0, 0.0, ds, scale};
-    if (previous) {
+    if (previous && !from_touch) {
       const double dv = s.v - previous->v, dq = s.q - previous->q;
       const Vec du = (s.u - previous->u) / scale;
       const double len = std::sqrt(dv * dv + dq * dq + du.squaredNorm());
@@ -444,7 +453,13 @@ StaticBranch Tracer::run() {
     // A step is kept only if it goes on in the direction it was predicted in: within about 25
     // degrees of the secant, in (v, q, u / scale). A sharper turn is a corrector that has
     // jumped onto another part of the branch (or back along it).
-    if (iterations && previous && turn(s, trial, arc, scale) < kMinTurnCosine) iterations.reset();
+    if (iterations && previous && !from_touch && turn(s, trial, arc, scale) < kMinTurnCosine) {
+      iterations.reset();
+    }
+    if (iterations && from_touch) {
+      problem_.scatter(trial.u, x_);
+      if (problem_.self_contact(x_).second < b.points.back().contact_regions) iterations.reset();
+    }
     if (!iterations) {
       ds *= 0.5;
       // Past a sharp turn (a maximum whose curvature one step spans) the secant of the last
@@ -456,6 +471,7 @@ StaticBranch Tracer::run() {
         walk = *before_last;
         before_last.reset();
         b.points.pop_back();
+        from_touch = touched();
         ++steps_back;
         continue;
       }
@@ -473,6 +489,7 @@ StaticBranch Tracer::run() {
     s = trial;
     taken = ds;
     b.points.push_back(point(s, *iterations));
+    from_touch = touched();
     report(b, b.points.size() - 1);
     if (o_.check_folds) {
       try {

@@ -47,6 +47,7 @@ struct BranchPoint {
   double apex_z = 0.0;         // displacement of the outer apex node along z [m]
   int iterations = 0;          // Newton iterations it took
   double contact_depth = 0.0;  // the deepest self-contact crossing there [m]
+  int contact_regions = 0;     // separate regions of the inner surface touching (closed creases)
   // The inner surface's largest crease measure there (axi/surface_stretch.hpp: the ratio of its
   // principal stretches where it is compressed along itself) and that point's distance from the
   // rim face along the undeformed surface [m] (NaN where no point is compressed).

@@ -24,14 +24,11 @@ Body make_body() {
 
 void check_self_contact_gradient(const Body& b, const Points& x, double depth, double smoothing);
 
-// An inner node put 0.1 mm across the next segment but one, along that segment's normal: a kink
-// of the inner surface folded through itself.
-TEST(AxiContact, SelfContactForcesAreMinusTheGradientOfItsEnergyAndPushRingAgainstRing) {
-  const Body b = make_body();
+// Inner node a put `depth` across the segment from inner node k (k, k + 1, k + 2) at xi = 0.3,
+// along that segment's normal: a kink of the inner surface folded through itself.
+void kink(const Body& b, Points& x, std::size_t k, std::size_t a, double depth) {
   const auto& in = b.inner();
-  auto x = b.nodes();
-  const std::size_t k = 30, a = 33;  // segment (in[30], in[31], in[32]); the node in[33]
-  const double xi = 0.3, depth = 1e-4;
+  const double xi = 0.3;
   const auto L = lagrange(xi), dL = lagrange_d(xi);
   double cr = 0, cz = 0, tr = 0, tz = 0;
   for (int m = 0; m < 3; ++m) {
@@ -44,6 +41,14 @@ TEST(AxiContact, SelfContactForcesAreMinusTheGradientOfItsEnergyAndPushRingAgain
   // Into the material: minus the normal into the cavity, (-tz, tr) / |t|.
   x.r[in[a]] = cr + depth * tz / tn;
   x.z[in[a]] = cz - depth * tr / tn;
+}
+
+// An inner node put 0.1 mm across the next segment but one.
+TEST(AxiContact, SelfContactForcesAreMinusTheGradientOfItsEnergyAndPushRingAgainstRing) {
+  const Body b = make_body();
+  auto x = b.nodes();
+  const double depth = 1e-4;
+  kink(b, x, 30, 33, depth);  // segment (in[30], in[31], in[32]); the node in[33]
   // The plain law, a smoothing length shorter than the crossing and one longer.
   for (const double smoothing : {0.0, 2e-5, 5e-4}) {
     SCOPED_TRACE(smoothing);
@@ -89,6 +94,24 @@ void check_self_contact_gradient(const Body& b, const Points& x, double depth, d
   Points g{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0)};
   EXPECT_EQ(contact.add_forces(b.nodes(), g), 0.0);
   EXPECT_EQ(contact.touching(), 0);
+}
+
+// Two kinks far apart touch in two regions, as two closed creases do; one kink's touching nodes
+// are one region however many of them cross.
+TEST(AxiContact, CountsTheSeparateRegionsThatTouch) {
+  const Body b = make_body();
+  const InnerSelfContact contact(b, default_contact_stiffness(b));
+  Points f{std::vector<double>(b.num_nodes(), 0.0), std::vector<double>(b.num_nodes(), 0.0)};
+  auto x = b.nodes();
+  contact.add_forces(x, f);
+  EXPECT_EQ(contact.regions(), 0);
+  kink(b, x, 30, 33, 1e-4);
+  contact.add_forces(x, f);
+  EXPECT_EQ(contact.regions(), 1);
+  EXPECT_GE(contact.touching(), 1);
+  kink(b, x, 4, 7, 1e-4);
+  contact.add_forces(x, f);
+  EXPECT_EQ(contact.regions(), 2);
 }
 
 // The regularised law: the plain one (k A d, k A d^2 / 2) at no smoothing; with a smoothing length
