@@ -107,11 +107,10 @@ class Body {
   [[nodiscard]] double crease_root_from_rim() const { return from_rim(crease_root_); }
   // The seeded creases' roots (MeshSpec::crease_seeds_from_rim), from the rim inwards.
   [[nodiscard]] const std::vector<int>& crease_seeds() const { return crease_seeds_; }
-  // The one nearest the rim, or -1 without one, and its arc length from the rim [m].
+  // The one nearest the rim, or -1 without one.
   [[nodiscard]] int crease_seed() const {
     return crease_seeds_.empty() ? -1 : crease_seeds_.front();
   }
-  [[nodiscard]] double crease_seed_from_rim() const { return from_rim(crease_seed()); }
   // The arc length from the rim, on the reference inner surface, at a node's polar angle [m];
   // NaN for -1.
   [[nodiscard]] double from_rim(int node) const;

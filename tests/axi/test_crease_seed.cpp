@@ -1,4 +1,4 @@
-// The seeded crease (axi::MeshSpec::crease_seed_from_rim, crease_seed_depth): a rosette of four
+// The seeded crease (axi::MeshSpec::crease_seeds_from_rim, crease_seed_depth): a rosette of four
 // elements at one inner corner node, in a block that conforms to the structured mesh around it,
 // and a notch there. Checked against the structured mesh (the same solid without a notch), a
 // closed form for the notch's volume, the patch test and the closed crease of the crease fan's
@@ -63,7 +63,7 @@ TEST(CreaseSeed, WithoutANotchTheSolidAndItsSurfacesAreTheStructuredMeshs) {
     EXPECT_EQ(elements_at(seeded, seeded.crease_seed()), 4);
     // The inner corner node nearest 3.35 mm from the rim.
     const double element = (kR - 0.5 * kH) * kPhi / along;
-    EXPECT_LE(std::abs(seeded.crease_seed_from_rim() - 3.35e-3), 0.5 * element + 1e-12);
+    EXPECT_LE(std::abs(seeded.from_rim(seeded.crease_seed()) - 3.35e-3), 0.5 * element + 1e-12);
     EXPECT_NO_THROW(seeded.check_folds(seeded.nodes()));
   }
 }
