@@ -22,13 +22,14 @@ std::string buckling_hint(const std::optional<popper::ReverseSnap>& b, const std
       "the cap's axisymmetric quasi-static branch buckles at p_c = "
       "{:.0f} Pa ({:.3g} Zoelly's p_c)",
       b->p_c, b->p_c / pc);
+  if (run_followed_a_branch) {
+    // Its preparation takes the branch through the maximum wherever it lies.
+    return at +
+           ": the run's own branch, on the run's mesh, stopped before the inverted state, "
+           "for the reason its preparation line gives";
+  }
   if (b->p_c > buckle_factor * pc) {
     return at + ", beyond the preparation's suction: a thinner or deeper cap buckles within it";
-  }
-  if (run_followed_a_branch) {
-    return at +
-           ", within the preparation's suction: the run's own branch, on the run's mesh, stopped "
-           "before the inverted state, for the reason its preparation line gives";
   }
   return at +
          ", within the preparation's suction: the discretisation kept the shell from "
@@ -81,12 +82,14 @@ std::vector<std::string> preparation_hints(const config::Case& c, const popper::
     hints.push_back(
         holding_hint(branch, why, pc, delta_p_j, prep.snapped_back_on_plate, c.popper.net_weight));
   } else {
+    // The axisymmetric preparation follows its branch as far as it goes, with no suction bound.
+    const bool axi = c.numerics.model == config::Model::Axisymmetric;
     hints.push_back(
-        fmt::format("Zoelly's p_c of the case is {:.0f} Pa (snapjump predict); the preparation "
-                    "raised the suction to {:.3g} p_c = {:.0f} Pa",
-                    pc, buckle_factor, buckle_factor * pc));
-    hints.push_back(buckling_hint(branch, why, pc, buckle_factor,
-                                  c.numerics.model == config::Model::Axisymmetric));
+        axi ? fmt::format("Zoelly's p_c of the case is {:.0f} Pa (snapjump predict)", pc)
+            : fmt::format("Zoelly's p_c of the case is {:.0f} Pa (snapjump predict); the "
+                          "preparation raised the suction to {:.3g} p_c = {:.0f} Pa",
+                          pc, buckle_factor, buckle_factor * pc));
+    hints.push_back(buckling_hint(branch, why, pc, buckle_factor, axi));
   }
   const auto r = c.numerics.resolution;
   hints.push_back(r == config::Resolution::Fine

@@ -15,8 +15,8 @@ namespace snapjump::app {
 // What the axisymmetric quasi-static branch of the case's cap (b; nothing, with why, where it
 // could not be computed) says about the buckling suction against the preparation's,
 // buckle_factor Zoelly's p_c (pc). Where the run itself followed such a branch on its own mesh
-// (run_followed_a_branch: the axisymmetric model), a branch that buckles within that suction
-// points to the reason the run's branch stopped, not to the discretisation.
+// (run_followed_a_branch: the axisymmetric model, which has no such bound), a branch that
+// buckles points to the reason the run's branch stopped, not to the discretisation.
 std::string buckling_hint(const std::optional<popper::ReverseSnap>& b, const std::string& why,
                           double pc, double buckle_factor, bool run_followed_a_branch);
 

@@ -506,9 +506,11 @@ StaticBranch Tracer::run() {
       break;
     }
     const double dq = s.q - previous->q;
-    if (rise < 0 && dq > 0 && s.q * o_.p_ref > o_.max_dp_before_buckling) {
-      b.stop_reason = fmt::format("dp rose past {:.6g} Pa before the branch's buckling maximum",
-                                  o_.max_dp_before_buckling);
+    if (o_.stop_inverted_without_buckling && rise < 0 && dq > 0 && s.v < -1.0) {
+      b.stop_reason = fmt::format(
+          "the cap turned inside out (V / V0 = {:.4g}) under a suction that only rose, to {:.6g} "
+          "Pa, without a buckling maximum",
+          s.v, s.q * o_.p_ref);
       break;
     }
     const bool turned_up = rise == 0 && dq > 0;    // previous was a minimum

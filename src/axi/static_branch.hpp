@@ -67,9 +67,10 @@ struct BranchOptions {
   // end_dp: the branch stops at its first point (StaticBranch::end_above, the state at that
   // point's dp), from which a lower suction snaps the shell back.
   double end_dp = std::numeric_limits<double>::quiet_NaN();
-  // Stop, not reaching the end, once dp rises past this [Pa] before the branch's first maximum:
-  // a suction raised no further never buckles the cap (NaN: not used).
-  double max_dp_before_buckling = std::numeric_limits<double>::quiet_NaN();
+  // Stop, not reaching the end, where v falls below -1 (the cavity as large as it was, on the
+  // other side of the rim's plane) before the branch's first maximum: a cap that turns inside out
+  // under a suction that only rises never snaps.
+  bool stop_inverted_without_buckling = false;
   int max_points = 5000;
   bool contacts = true;     // self-contact and the container's cone
   double tolerance = 1e-8;  // Newton: |residual| below this times p_ref times the rim's area

@@ -124,11 +124,11 @@ void AxiShell::start_held(double damping) {
 }
 
 std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(
-    double dp, double max_dp, double p_ref, const std::function<void()>& at_point) {
+    double dp, double p_ref, const std::function<void()>& at_point) {
   axi::BranchOptions o;
   o.p_ref = p_ref;
   o.end_dp = dp;
-  o.max_dp_before_buckling = max_dp;
+  o.stop_inverted_without_buckling = true;
   o.end_volume = -std::numeric_limits<double>::max();  // only end_dp ends it
   if (at_point) o.progress = [&](const axi::BranchPoint&) { at_point(); };
   const auto b = axi::trace_static_branch(body_, o);

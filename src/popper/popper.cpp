@@ -319,7 +319,7 @@ std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress
     const auto at_point = [&] {
       if (progress) progress("buckle (branch)", 0.0, 0.0);
     };
-    if (const auto qs = m.buckle_quasi_statically(delta_p_j_, p_buckle, pc, at_point)) {
+    if (const auto qs = m.buckle_quasi_statically(delta_p_j_, pc, at_point)) {
       gas_.hold(qs->dp);
       if (!buckled_quasi_statically(prep, *qs, pc)) return std::nullopt;
       return qs->dp;
@@ -355,16 +355,14 @@ std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress
 
 bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::QuasiStaticBuckle& qs,
                                       double pc) {
-  const double p_buckle = settings_.buckle_factor * pc;
   const auto known = [](double p) { return std::isfinite(p) ? std::optional(p) : std::nullopt; };
   prep.buckling_pressure = known(qs.p_c);
   prep.reverse_pressure = known(qs.p_minus);
   prep.hold_pressure = known(qs.p_hold);
   if (!std::isfinite(qs.p_c)) {
     prep.message = fmt::format(
-        "the shell did not invert under {:.0f} Pa ({:.1f} p_c): its quasi-static branch has not "
-        "reached its buckling maximum there ({})",
-        p_buckle, settings_.buckle_factor, qs.note);
+        "the shell did not invert: its quasi-static branch ended before a buckling maximum: {}",
+        qs.note);
     return false;
   }
   // At the foot of an inverted segment above delta_p_j (its minimum, p_hold, lies above it) the
@@ -400,10 +398,20 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
           ? fmt::format("holds fully inverted down to {:.0f} Pa ({:.3f} p_c)", qs.p_hold,
                         qs.p_hold / pc)
           : std::string("holds fully inverted down to a suction the branch did not reach");
+  // The branch is followed through its maximum wherever it lies; the dynamic ramp would stop at
+  // buckle_factor p_c, which a cap that buckles out of symmetry (the 3D model, a real shell) may
+  // pass below.
+  const auto beyond =
+      qs.p_c > settings_.buckle_factor * pc
+          ? fmt::format(
+                " (above the {:.1f} p_c of the dynamic ramp: the suction is raised along the "
+                "axisymmetric branch until the shell inverts)",
+                settings_.buckle_factor)
+          : std::string();
   prep.message = fmt::format(
       "inverted along the quasi-static pressure-volume branch {}: it buckles at {:.0f} Pa ({:.3f} "
-      "p_c), {} and has no buckled state below {:.0f} Pa ({:.3f} p_c)",
-      where, qs.p_c, qs.p_c / pc, hold, qs.p_minus, qs.p_minus / pc);
+      "p_c){}, {} and has no buckled state below {:.0f} Pa ({:.3f} p_c)",
+      where, qs.p_c, qs.p_c / pc, beyond, hold, qs.p_minus, qs.p_minus / pc);
   return true;
 }
 

@@ -58,8 +58,10 @@ class ShellModel {
   // Phases 1-2 done quasi-statically, where the model has the solver for it (a model without one
   // returns nothing, and the protocol ramps the suction in time): the rim held, the shell's
   // pressure-volume branch followed from the natural state by continuation, through its buckling
-  // maximum (which must lie below max_dp) and on to the inverted segment, where the shell is put
-  // at rest in the equilibrium of suction dp. p_ref: the pressure scale (Zoelly's p_c). Where the
+  // maximum wherever it lies (the suction raised until the shell inverts, as the protocol has
+  // it: the dynamic ramp's buckle_factor is no bound here) and on to the inverted segment, where
+  // the shell is put at rest in the equilibrium of suction dp. p_ref: the pressure scale
+  // (Zoelly's p_c). Where the
   // inverted segment's lowest suction lies above dp, the shell is left at the foot of that
   // segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction from there; where the
   // segment turns down at a maximum on the way up to dp, or stops being stable on the way, at
@@ -85,9 +87,8 @@ class ShellModel {
   };
   // `at_point` is called at each converged point of the branch (a stop hook may throw from it).
   virtual std::optional<QuasiStaticBuckle> buckle_quasi_statically(
-      double dp, double max_dp, double p_ref, const std::function<void()>& at_point) {
+      double dp, double p_ref, const std::function<void()>& at_point) {
     (void)dp;
-    (void)max_dp;
     (void)p_ref;
     (void)at_point;
     return std::nullopt;

@@ -952,7 +952,7 @@ TEST(Cli, APrefactorFarFromItsBoundsIsNamedWithItsLikelyCause) {
 }
 
 TEST(Cli, ARunThatDoesNotInvertSaysWhatToTryAndExitsThree) {
-  // A shallow cap (phi = 20 deg): its branch has no buckling maximum below 1.4 p_c.
+  // A shallow cap (phi = 20 deg): its branch turns it inside out without a buckling maximum.
   const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_not_inverted";
   std::filesystem::remove_all(dir);
   const auto r = run({"run", "--phi", "20deg", "--model", "axisymmetric", "--resolution", "coarse",

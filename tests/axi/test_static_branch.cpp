@@ -191,18 +191,28 @@ TEST(StaticBranch, AgreesWithTheThinShellTheory) {
   EXPECT_NEAR(fe.p_c / st.p_c, 1.0, kH / kR);
 }
 
-// A suction that stops short of the buckling maximum (0.9 of Zoelly's, the branch's is 0.943)
-// never buckles the cap: the branch says so instead of going on to the inverted state.
-TEST(StaticBranch, StopsWhereTheSuctionWouldNotBuckleTheCap) {
-  auto o = options(-3.0);
-  o.end_dp = 1.4 * kPref;
-  o.max_dp_before_buckling = 0.9 * kPref;
-  const auto b = trace_static_branch(make_body(21), o);
+// A shallow cap (phi = 20 deg) has no buckling maximum: under a suction that only rises it
+// turns inside out without a snap. Asked to, the branch stops once the cavity has passed its
+// mirror image (V / V0 < -1) with the suction still rising, and says why; a deep cap's branch
+// with the same option goes through its maximum to the inverted segment.
+TEST(StaticBranch, StopsWhereTheCapTurnsInsideOutWithoutBuckling) {
+  auto o = options(-9.0);
+  o.end_dp = 0.5 * kPref;
+  o.stop_inverted_without_buckling = true;
+  const Body shallow({kR, kH, 20.0 * std::numbers::pi / 180.0, 2, 8},
+                     fem::Material::from_young(kE, kNu, 1160.0));
+  const auto b = trace_static_branch(shallow, o);
   EXPECT_FALSE(b.reached_end);
   EXPECT_TRUE(std::isnan(b.p_c));
-  EXPECT_NE(b.stop_reason.find("before the branch's buckling maximum"), std::string::npos)
-      << b.stop_reason;
-  EXPECT_LE(b.points.back().dp, 0.9 * kPref * 1.1);
+  EXPECT_NE(b.stop_reason.find("turned inside out"), std::string::npos) << b.stop_reason;
+  EXPECT_LT(b.points.back().volume / b.V0, -1.0);
+  EXPECT_GT(b.points[b.points.size() - 2].volume / b.V0, -1.0);
+  for (std::size_t i = 1; i < b.points.size(); ++i) {
+    EXPECT_GT(b.points[i].dp, b.points[i - 1].dp) << i;
+  }
+  const auto deep = trace_static_branch(make_body(21), o);
+  EXPECT_TRUE(deep.reached_end) << deep.stop_reason;
+  EXPECT_NEAR(deep.points.back().dp, 0.5 * kPref, 1e-6 * kPref);
 }
 
 TEST(StaticBranch, RefusesUnusableOptions) {

@@ -1,8 +1,8 @@
 // Every case in examples/ goes through the protocol's preparation (buckle, set delta_p_j, ground)
 // at the coarse preset of both models: the shell inverts, holds at delta_p_j and stands on the
-// plate with its net weight, or the preparation says why it cannot. The one stated exception:
-// the (25, 2.5) mm cap in the axisymmetric model, whose quasi-static branch peaks at 1.59 p_c,
-// beyond the protocol's 1.4 p_c (docs/axisymmetric.md, "The pressure-volume branch"). The runs
+// plate with its net weight. The (25, 2.5) mm cap's axisymmetric branch peaks at 1.59 p_c, above
+// the 3D model's ramp to 1.4 p_c: the axisymmetric preparation raises the suction along it until
+// the shell inverts and says so (docs/axisymmetric.md, "The pressure-volume branch"). The runs
 // to the apex of the flight are the long validation's.
 #include <gtest/gtest.h>
 
@@ -37,9 +37,9 @@ TEST_P(ExamplePreparation, PreparesAtTheCoarsePresetOrSaysWhyNot) {
   const auto prep = pop.prepare();
   std::printf("%s: %s\n", e.file, prep.message.c_str());
   if (e.model == config::Model::Axisymmetric && std::string(e.file) == "R25_h2.5.toml") {
-    EXPECT_FALSE(prep.inverted);
-    EXPECT_NE(prep.message.find("buckling maximum"), std::string::npos) << prep.message;
-    return;
+    // Its axisymmetric branch buckles above the dynamic ramp's 1.4 p_c; the preparation follows
+    // it there and says so.
+    EXPECT_NE(prep.message.find("until the shell inverts"), std::string::npos) << prep.message;
   }
   ASSERT_TRUE(prep.held) << prep.message;
   EXPECT_NEAR(prep.plate_force / c.popper.net_weight, 1.0, 0.05) << prep.message;
