@@ -302,11 +302,19 @@ std::pair<std::string, nlohmann::json> surface_report(const config::Case& c,
       1e3 * prep.surface_from_rim, ratio, crease);
   if (biot) words += fmt::format(", this law's smooth surface wrinkles from {:.3g} (Biot)", *biot);
   const bool past_biot = biot && ratio > *biot;
-  if (past_biot) {
+  const int closed = prep.surface_closed_creases;
+  if (closed > 0) {
+    words += fmt::format(
+        "; it touches itself in {}: creased, {} faces closed (docs/axisymmetric.md, \"The crease "
+        "at the clamp\")",
+        closed == 1 ? std::string("one place") : fmt::format("{} places", closed),
+        closed == 1 ? "the crease's" : "each crease's");
+  } else if (past_biot) {
     words +=
-        ": past both, so no smooth surface of this law is stable there, and the model's is "
-        "either creased (its faces closed) or held smooth by its mesh alone (docs/axisymmetric.md, "
-        "\"The crease at the clamp\")";
+        ": past both, so no smooth surface of this law is stable there; no two parts of the "
+        "model's surface touch, so it is held smooth by its mesh alone, or creased with its faces "
+        "apart or closed within one element's edge (docs/axisymmetric.md, \"The crease at the "
+        "clamp\")";
   } else if (past) {
     words +=
         ": past the crease threshold and short of Biot's, so a shell of a nearly incompressible "
@@ -318,7 +326,8 @@ std::pair<std::string, nlohmann::json> surface_report(const config::Case& c,
                       {"crease_ratio", crease},
                       {"biot_ratio", biot ? nlohmann::json(*biot) : nlohmann::json(nullptr)},
                       {"past_crease_threshold", past},
-                      {"past_biot", past_biot}};
+                      {"past_biot", past_biot},
+                      {"closed_creases", closed}};
   return {words, j};
 }
 

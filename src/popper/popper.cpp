@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fem/body.hpp"
 #include "measure/analysis.hpp"
 #include "popper/axi_shell.hpp"
 #include "popper/mpm_shell.hpp"
@@ -288,11 +289,18 @@ Preparation Popper::prepare(const Progress& progress) {
   const double pc = zoelly_pc();
   const auto suction = buckle(prep, progress, pc);
   if (!suction) return prep;
-  if (!set_delta_p_j(prep, progress, pc, *suction)) return prep;
-  if (!ground(prep, progress, pc)) return prep;
+  // A fold in phases 2-3 carries what phase 1 found (where the shell buckled, the state it was
+  // left in) in its message, which the run's summary keeps as its status.
+  try {
+    if (!set_delta_p_j(prep, progress, pc, *suction)) return prep;
+    if (!ground(prep, progress, pc)) return prep;
+  } catch (const fem::FoldedElement& e) {
+    throw fem::FoldedElement(fmt::format("after the shell {}", prep.message), e);
+  }
   if (const auto s = model_->inner_surface_compression()) {
     prep.surface_ratio = s->ratio;
     prep.surface_from_rim = s->from_rim;
+    prep.surface_closed_creases = s->closed_creases;
   }
   prep.message +=
       fmt::format(", {}, grounded in {:.0f} ms: plate force {:.3f} N for a net weight of {:.3f} N",

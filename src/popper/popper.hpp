@@ -130,10 +130,11 @@ struct Preparation {
   double plate_force = 0.0;  // after grounding, mean plate force over the settling's end [N]
   // The grounded shell's inner surface where it is compressed along itself most
   // (ShellModel::inner_surface_compression): the ratio of its principal stretches, and the
-  // distance from the rim face [m] (NaN where nothing is compressed); nothing where the model
-  // does not resolve it (3D).
+  // distance from the rim face [m] (NaN where nothing is compressed), and in how many places it
+  // touches itself (closed creases); nothing where the model does not resolve it (3D).
   std::optional<double> surface_ratio;
   double surface_from_rim = std::numeric_limits<double>::quiet_NaN();
+  int surface_closed_creases = 0;
   std::string message;  // what happened, in words
 };
 

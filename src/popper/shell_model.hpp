@@ -114,10 +114,12 @@ class ShellModel {
   virtual void check_folds() const = 0;
   // Where the inner surface (the cavity's wall) is compressed along itself most: the ratio of its
   // principal stretches there, the measure a crease criterion reads (axi/surface_stretch.hpp),
-  // and its distance from the rim face along the undeformed surface [m]. Nothing where the model
-  // does not resolve the surface's strain (the 3D mesh: one element through h).
+  // and its distance from the rim face along the undeformed surface [m]; and in how many separate
+  // places the inner surface touches itself (closed creases). Nothing where the model does not
+  // resolve the surface's strain (the 3D mesh: one element through h).
   struct SurfaceCompression {
     double ratio = 1.0, from_rim = 0.0;
+    int closed_creases = 0;
   };
   [[nodiscard]] virtual std::optional<SurfaceCompression> inner_surface_compression() const = 0;
   // Of the shell's weight, g along -z [J].

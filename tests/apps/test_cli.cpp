@@ -666,8 +666,28 @@ TEST(Cli, TheGroundedShellsInnerSurfaceIsPrintedAndKeptInTheSummary) {
   EXPECT_NEAR(biot, 2.954, 0.005);
   EXPECT_TRUE(s["past_crease_threshold"].get<bool>());
   EXPECT_FALSE(s["past_biot"].get<bool>());
+  EXPECT_EQ(s["closed_creases"].get<int>(), 0);
   EXPECT_GT(s["from_rim"].get<double>(), 0.0);
   EXPECT_LT(s["from_rim"].get<double>(), 5e-3);
+}
+
+TEST(Cli, AClosedCreaseIsReportedAsSuch) {
+  // The (25, 2.5) mm cap on square 1.25 mm elements, a crease seeded 3.55 mm from the rim, held
+  // at 0.4 p_c: on its branch the crease starts at the notch and closes, and the grounded shell's
+  // inner surface touches itself there, whatever its stretch ratio says of a smooth surface.
+  const auto dir = std::filesystem::temp_directory_path() / "snapjump_cli_closed_crease";
+  std::filesystem::remove_all(dir);
+  const auto r =
+      run({"run", example("R25_h2.5.toml"), "--model", "axisymmetric", "--resolution", "coarse",
+           "--element-size", "1.25mm", "--crease-seed", "3.26mm", "--crease-seed-depth", "50um",
+           "--delta-p-j-over-pc", "0.4", "--end-time", "1ms", "--output", dir.string(), "--quiet"});
+  ASSERT_EQ(r.code, kExitOk) << r.err;
+  EXPECT_NE(r.out.find("it touches itself in one place: creased"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("stays smooth"), std::string::npos) << r.out;
+  std::ifstream in(dir / "summary.json");
+  const auto s = nlohmann::json::parse(in)["preparation"]["inner_surface"];
+  EXPECT_EQ(s["closed_creases"].get<int>(), 1);
+  EXPECT_NEAR(s["from_rim"].get<double>(), 3.55e-3, 0.01e-3);
 }
 
 TEST(Cli, ACreaseFanIsPrintedAndKeptInTheSummaryAndRefusedByThe3DModel) {

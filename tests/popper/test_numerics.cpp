@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <stdexcept>
 #include <string>
 
 #include "config/case.hpp"
+#include "fem/body.hpp"
 #include "fem/surface_instability.hpp"
 #include "popper/material.hpp"
 #include "popper/popper.hpp"
@@ -191,6 +193,28 @@ TEST(Protocol, ACapThatSnapsBackAsItIsGroundedIsNotHeld) {
       << prep.message;
   EXPECT_LT(low.model().apex_z(), 0.03 * c.shell.R);
   EXPECT_THROW(low.release(), std::logic_error);
+}
+
+// The (25, 2.5) mm cap at 4 x 56: its inverted segment stops being stable at 0.358 p_c, below
+// delta_p_j, and the shell snaps from there in phase 2 into a crease that folds an element
+// (docs/axisymmetric.md, "The converged popper"). The fold's error carries what phase 1 found.
+TEST(Protocol, AFoldAfterTheBuckleSaysWhatTheBuckleFound) {
+  auto c = config::load_case_file(std::filesystem::path(SNAPJUMP_SOURCE_DIR) / "examples" /
+                                  "R25_h2.5.toml");
+  c.numerics.model = config::Model::Axisymmetric;
+  c.numerics.element_size = 0.625e-3;
+  Popper pop(c, resolve_numerics(c));
+  try {
+    (void)pop.prepare();
+    ADD_FAILURE() << "no fold";
+  } catch (const fem::FoldedElement& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("after the shell inverted along the quasi-static pressure-volume branch "
+                        "to the last state stable under pressure control"),
+              std::string::npos)
+        << what;
+    EXPECT_NE(what.find("folded through itself"), std::string::npos) << what;
+  }
 }
 
 TEST(Protocol, TheGroundedShellsInnerSurfaceIsMeasuredWhereTheModelResolvesIt) {
