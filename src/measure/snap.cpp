@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <span>
 
 #include "config/plausibility.hpp"
 #include "measure/signal.hpp"
@@ -370,6 +372,23 @@ void snap_values_at_onset(Context& x) {
   at_onset("delta_p_onset", kPressure);
 }
 
+// The first sample from `from` on that starts a run of samples meeting `holds` that lasts at
+// least `least` [s] (to the sample after it, or to the last one where the record ends there).
+template <typename Holds>
+std::optional<std::size_t> first_lasting(std::span<const double> t, std::size_t from, double least,
+                                         Holds holds) {
+  const std::size_t n = t.size();
+  for (std::size_t i = from; i < n; ++i) {
+    if (!holds(i)) continue;
+    std::size_t j = i;
+    while (j + 1 < n && holds(j + 1)) ++j;
+    const double until = j + 1 == n ? t[j] : t[j + 1];
+    if (until - t[i] >= least) return i;
+    i = j;
+  }
+  return std::nullopt;
+}
+
 // The end of the snap's window (SnapWindow::first is left to the caller).
 SnapWindow snap_window_end(const Context& x) {
   const auto& a = x.a;
@@ -380,37 +399,30 @@ SnapWindow snap_window_end(const Context& x) {
   const std::size_t n = x.n;
   SnapWindow win;
   // The snap lasts until the popper leaves the plate or the shell goes back to a ring contact:
-  // the apex again above the onset level while the plate still pushes (after a snap without a
-  // launch, the suction can pull the shell back in and the popper lands on it again; that
-  // landing is not the snap's force). F* and the launch are looked for within it.
+  // the apex again above the onset level while the plate still pushes, for min_flight_time
+  // (after a snap without a launch, the suction can pull the shell back in and the popper lands
+  // on it again; that landing is not the snap's force; a flicker of w about the level as the
+  // apex settles is no return). F* and the launch are looked for within it.
   win.last = n - 1;
   if (a.onset_source == OnsetSource::ApexGap) {
     const auto w = series.column(kApexGap);
     const double level = options.onset_ratio * *a.R;
-    for (std::size_t i = *x.onset + 1; i < n; ++i) {
-      if (w[i] > level && F[i] > 0.0) {
-        win.last = i;
-        win.ring_again = true;
-        break;
-      }
+    const auto ring = first_lasting(t, *x.onset + 1, options.min_flight_time,
+                                    [&](std::size_t i) { return w[i] > level && F[i] > 0.0; });
+    if (ring) {
+      win.last = *ring;
+      win.ring_again = true;
     }
   }
-  // A contact column that says "none" for min_flight_time after the onset (a record that ends
-  // sooner does not count): the popper is off the plate, whatever F reads (a plate ringing, an
-  // offset); the snap's window ends there.
+  // A contact column that says "none" for min_flight_time after the onset: the popper is off the
+  // plate, whatever F reads (a plate ringing, an offset); the snap's window ends there.
   if (series.has_contact()) {
     const auto cs = series.contact();
-    for (std::size_t i = *x.onset + 1; i <= win.last; ++i) {
-      if (cs[i] != ContactState::None) continue;
-      std::size_t j = i;
-      while (j + 1 < n && cs[j + 1] == ContactState::None) ++j;
-      const double until = j + 1 == n ? t[j] : t[j + 1];
-      if (until - t[i] >= options.min_flight_time) {
-        win.contact_lost = i;
-        win.last = i;
-        break;
-      }
-      i = j;
+    const auto lost = first_lasting(t, *x.onset + 1, options.min_flight_time,
+                                    [&](std::size_t i) { return cs[i] == ContactState::None; });
+    if (lost && *lost <= win.last) {
+      win.contact_lost = *lost;
+      win.last = *lost;
     }
   }
   // The launch's crossing of the threshold may come up to min_flight_time after the contact
