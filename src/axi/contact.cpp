@@ -79,6 +79,12 @@ Projection project(const double pr[3], const double pz[3], double qr, double qz)
 
 }  // namespace
 
+InnerSelfContact::Touch InnerSelfContact::touch(const Points& x) const {
+  Points f{std::vector<double>(x.size(), 0.0), std::vector<double>(x.size(), 0.0)};
+  add_forces(x, f);
+  return {deepest_, regions_};
+}
+
 double InnerSelfContact::add_forces(const Points& x, Points& f) const {
   const auto& in = body_->inner();
   const std::size_t n = in.size();

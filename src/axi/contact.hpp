@@ -54,6 +54,12 @@ class InnerSelfContact {
   // And in how many separate regions of the inner surface (touching nodes more than
   // kRegionGap apart along it, two elements' edges, belong to different ones: two creases).
   [[nodiscard]] int regions() const { return regions_; }
+  // What add_forces finds at x, without its forces: the deepest crossing [m] and the regions.
+  struct Touch {
+    double deepest = 0.0;
+    int regions = 0;
+  };
+  [[nodiscard]] Touch touch(const Points& x) const;
   static constexpr std::size_t kRegionGap = 4;
   [[nodiscard]] double stiffness() const { return k_; }
   [[nodiscard]] double smoothing() const { return smoothing_; }

@@ -90,10 +90,8 @@ class Problem {
   }
   [[nodiscard]] Triplets stiffness(const Points& x, double dp) const;
   // The self-contact's deepest crossing [m] and how many separate regions touch.
-  [[nodiscard]] std::pair<double, int> self_contact(const Points& x) const {
-    Points f = zero();
-    self_.add_forces(x, f);
-    return {self_.deepest(), self_.regions()};
+  [[nodiscard]] InnerSelfContact::Touch self_contact(const Points& x) const {
+    return self_.touch(x);
   }
 
  private:
@@ -332,7 +330,7 @@ BranchPoint Tracer::point(const State& s, int iterations) {
   problem_.scatter(s.u, x_);
   const int apex = body_.apex();
   const auto crease = largest_compressed_ratio(inner_surface_stretches(body_, x_));
-  const auto [depth, regions] = o_.contacts ? problem_.self_contact(x_) : std::pair(0.0, 0);
+  const auto [depth, regions] = o_.contacts ? problem_.self_contact(x_) : InnerSelfContact::Touch{};
   return {s.v * V0_,    s.q * o_.p_ref, x_.z[apex] - body_.nodes().z[apex],
           iterations,   depth,          regions,
           crease.ratio, crease.from_rim};
@@ -458,7 +456,7 @@ StaticBranch Tracer::run() {
     }
     if (iterations && from_touch) {
       problem_.scatter(trial.u, x_);
-      if (problem_.self_contact(x_).second < b.points.back().contact_regions) iterations.reset();
+      if (problem_.self_contact(x_).regions < b.points.back().contact_regions) iterations.reset();
     }
     if (!iterations) {
       ds *= 0.5;

@@ -114,12 +114,8 @@ nlohmann::json AxiShell::numerics_json() const {
 std::optional<ShellModel::SurfaceCompression> AxiShell::inner_surface_compression() const {
   const auto& x = dynamics_.positions();
   const auto worst = axi::largest_compressed_ratio(axi::inner_surface_stretches(body_, x));
-  // A copy: the dynamics' own contact keeps what its last step found.
-  auto contact = dynamics_.self_contact();
-  axi::Points f{std::vector<double>(x.r.size(), 0.0), std::vector<double>(x.z.size(), 0.0)};
-  contact.add_forces(x, f);
   // (1, NaN) where nothing is compressed
-  return SurfaceCompression{worst.ratio, worst.from_rim, contact.regions()};
+  return SurfaceCompression{worst.ratio, worst.from_rim, dynamics_.self_contact().touch(x).regions};
 }
 
 void AxiShell::start_held(double damping) {

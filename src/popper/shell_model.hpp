@@ -61,13 +61,12 @@ class ShellModel {
   // maximum wherever it lies (the suction raised until the shell inverts, as the protocol has
   // it: the dynamic ramp's buckle_factor is no bound here) and on to the inverted segment, where
   // the shell is put at rest in the equilibrium of suction dp. p_ref: the pressure scale
-  // (Zoelly's p_c). Where the
-  // inverted segment's lowest suction lies above dp, the shell is left at the foot of that
-  // segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction from there; where the
-  // segment turns down at a maximum on the way up to dp, or stops being stable on the way, at
-  // that maximum or its last stable state, for the dynamics to snap it under that suction and
-  // raise the suction from there. Throws
-  // fem::FoldedElement when the branch folds an element before it gets there.
+  // (Zoelly's p_c). Where the inverted segment's lowest suction lies above dp, the shell is left
+  // at the foot of that segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction
+  // from there; where the segment turns down at a maximum on the way up to dp, or stops being
+  // stable on the way, at that maximum or its last stable state, for the dynamics to snap it
+  // under that suction and raise the suction from there. Throws fem::FoldedElement when the
+  // branch folds an element before it gets there.
   struct QuasiStaticBuckle {
     bool reached = false;  // an end state was found (at dp, or at the foot above it)
     bool foot = false;     // at the foot of an inverted segment whose lowest suction exceeds dp
