@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "axi/quadratic.hpp"
@@ -85,62 +86,140 @@ InnerSelfContact::Touch InnerSelfContact::touch(const Points& x) const {
   return {deepest_, regions_};
 }
 
-double InnerSelfContact::add_forces(const Points& x, Points& f) const {
+// Each segment's box (its three nodes widened by the depth limit) and its unit tangents at its two
+// ends, from the axis towards the rim.
+void InnerSelfContact::prepare(const Points& x) const {
   const auto& in = body_->inner();
   const std::size_t n = in.size();
+  segments_.resize(n / 2);
+  for (std::size_t k = 0; k + 2 < n; k += 2) {
+    const double r[3] = {x.r[in[k]], x.r[in[k + 1]], x.r[in[k + 2]]};
+    const double z[3] = {x.z[in[k]], x.z[in[k + 1]], x.z[in[k + 2]]};
+    Segment& s = segments_[k / 2];
+    s.lo_r = std::min({r[0], r[1], r[2]}) - depth_limit_;
+    s.hi_r = std::max({r[0], r[1], r[2]}) + depth_limit_;
+    s.lo_z = std::min({z[0], z[1], z[2]}) - depth_limit_;
+    s.hi_z = std::max({z[0], z[1], z[2]}) + depth_limit_;
+    for (int end = 0; end < 2; ++end) {
+      const auto dL = lagrange_d(end == 0 ? -1.0 : 1.0);
+      const double tr = dL[0] * r[0] + dL[1] * r[1] + dL[2] * r[2];
+      const double tz = dL[0] * z[0] + dL[1] * z[1] + dL[2] * z[2];
+      const double tn = std::hypot(tr, tz);
+      s.t[end][0] = tn > 0.0 ? tr / tn : 0.0;
+      s.t[end][1] = tn > 0.0 ? tz / tn : 0.0;
+    }
+  }
+}
+
+// Whether a point at q (inner node a, or none) may take its crossing from the interior of the
+// segment from inner node k: at each end shared with a neighbouring segment that does not hold a
+// either, q lies on this segment's side of the corner's split (the line through the corner across
+// the mean of the two tangents, where the two segments' gaps are equal).
+bool InnerSelfContact::owns(const Points& x, std::size_t a, double qr, double qz,
+                            std::size_t k) const {
+  const auto& in = body_->inner();
+  const std::size_t n = in.size();
+  const auto beyond = [&](std::size_t corner, const double* ta, const double* tb) {
+    return (qr - x.r[in[corner]]) * (ta[0] + tb[0]) + (qz - x.z[in[corner]]) * (ta[1] + tb[1]);
+  };
+  const auto holds = [&](std::size_t seg) { return a >= seg && a <= seg + 2; };
+  if (k >= 2 && !holds(k - 2) &&
+      beyond(k, segments_[k / 2 - 1].t[1], segments_[k / 2].t[0]) < 0.0) {
+    return false;
+  }
+  if (k + 4 < n && !holds(k + 2) &&
+      beyond(k + 2, segments_[k / 2].t[1], segments_[k / 2 + 1].t[0]) > 0.0) {
+    return false;
+  }
+  return true;
+}
+
+template <typename Visit>
+void InnerSelfContact::crossings(const Points& x, std::size_t a, double qr, double qz,
+                                 Visit visit) const {
+  const auto& in = body_->inner();
+  const std::size_t n = in.size();
+  // The interiors of the segments (from inner node k: k, k + 1, k + 2) that do not hold a.
+  for (std::size_t k = 0; k + 2 < n; k += 2) {
+    if (a >= k && a <= k + 2) continue;
+    const Segment& b = segments_[k / 2];
+    if (qr < b.lo_r || qr > b.hi_r || qz < b.lo_z || qz > b.hi_z) continue;
+    const double pr[3] = {x.r[in[k]], x.r[in[k + 1]], x.r[in[k + 2]]};
+    const double pz[3] = {x.z[in[k]], x.z[in[k + 1]], x.z[in[k + 2]]};
+    const auto pj = project(pr, pz, qr, qz);
+    // A projection onto an end belongs to the corner there (below) or to the surface's end.
+    if (pj.xi <= -1.0 || pj.xi >= 1.0) continue;
+    const auto L = lagrange(pj.xi);
+    const auto dL = lagrange_d(pj.xi);
+    const double cr = L[0] * pr[0] + L[1] * pr[1] + L[2] * pr[2];
+    const double cz = L[0] * pz[0] + L[1] * pz[1] + L[2] * pz[2];
+    const double tr = dL[0] * pr[0] + dL[1] * pr[1] + dL[2] * pr[2];
+    const double tz = dL[0] * pz[0] + dL[1] * pz[1] + dL[2] * pz[2];
+    const double tn = std::hypot(tr, tz);
+    if (!(tn > 0.0)) continue;
+    // Normal into the cavity (away from the material): (-dz, dr) / |t| along the surface's
+    // direction from the axis to the rim.
+    const double nr = -tz / tn, nz = tr / tn;
+    const double g = (qr - cr) * nr + (qz - cz) * nz;
+    if (!(g < 0.0) || g < -depth_limit_ || !owns(x, a, qr, qz, k)) continue;
+    visit(k, pj.xi, nr, nz, -g);
+  }
+  // The corners (the node shared by the segments from j - 2 and from j, neither holding a) where
+  // the surface turns away from the cavity: on the material's side, beyond the first segment's
+  // end and before the second's start, the closest point is the corner itself.
+  for (std::size_t j = 2; j + 2 < n; j += 2) {
+    if (a >= j - 2 && a <= j + 2) continue;
+    const double dr = qr - x.r[in[j]], dz = qz - x.z[in[j]];
+    const double d = std::hypot(dr, dz);
+    if (!(d > 0.0) || d > depth_limit_) continue;
+    const double* ta = segments_[j / 2 - 1].t[1];
+    const double* tb = segments_[j / 2].t[0];
+    if (dr * ta[0] + dz * ta[1] < 0.0 || dr * tb[0] + dz * tb[1] > 0.0) continue;
+    // The two normals into the cavity, (-t_z, t_r): q on the material's side of both.
+    if (-dr * (ta[1] + tb[1]) + dz * (ta[0] + tb[0]) >= 0.0) continue;
+    visit(j, -1.0, -dr / d, -dz / d, d);
+  }
+}
+
+InnerSelfContact::PointCrossing InnerSelfContact::crossing_at(const Points& x, double r,
+                                                              double z) const {
+  prepare(x);
+  PointCrossing c;
+  crossings(x, std::numeric_limits<std::size_t>::max(), r, z,
+            [&](std::size_t, double, double nr, double nz, double depth) {
+              c.push_r += depth * nr;
+              c.push_z += depth * nz;
+              ++c.features;
+            });
+  return c;
+}
+
+double InnerSelfContact::add_forces(const Points& x, Points& f) const {
+  const auto& in = body_->inner();
   deepest_ = 0.0;
   touching_ = 0;
   regions_ = 0;
   std::size_t last = 0;  // the last touching node, in the order of inner()
   double energy = 0.0;
-  // The segment from inner node k holds k, k + 1, k + 2 (from the axis to the rim).
-  boxes_.resize(n / 2);
-  for (std::size_t k = 0; k + 2 < n; k += 2) {
-    const double r[3] = {x.r[in[k]], x.r[in[k + 1]], x.r[in[k + 2]]};
-    const double z[3] = {x.z[in[k]], x.z[in[k + 1]], x.z[in[k + 2]]};
-    boxes_[k / 2] = {
-        std::min({r[0], r[1], r[2]}) - depth_limit_, std::max({r[0], r[1], r[2]}) + depth_limit_,
-        std::min({z[0], z[1], z[2]}) - depth_limit_, std::max({z[0], z[1], z[2]}) + depth_limit_};
-  }
-  for (std::size_t a = 0; a < n; ++a) {
-    const double qr = x.r[in[a]], qz = x.z[in[a]];
-    for (std::size_t k = 0; k + 2 < n; k += 2) {
-      if (a >= k && a <= k + 2) continue;  // its own segment
-      const Box& b = boxes_[k / 2];
-      if (qr < b.lo_r || qr > b.hi_r || qz < b.lo_z || qz > b.hi_z) continue;
-      const double pr[3] = {x.r[in[k]], x.r[in[k + 1]], x.r[in[k + 2]]};
-      const double pz[3] = {x.z[in[k]], x.z[in[k + 1]], x.z[in[k + 2]]};
-      const auto pj = project(pr, pz, qr, qz);
-      // Only a projection inside the segment is a crossing of it (an end point belongs to the
-      // neighbour's interior or to the surface's ends).
-      if (pj.xi <= -1.0 || pj.xi >= 1.0) continue;
-      const auto L = lagrange(pj.xi);
-      const auto dL = lagrange_d(pj.xi);
-      const double cr = L[0] * pr[0] + L[1] * pr[1] + L[2] * pr[2];
-      const double cz = L[0] * pz[0] + L[1] * pz[1] + L[2] * pz[2];
-      const double tr = dL[0] * pr[0] + dL[1] * pr[1] + dL[2] * pr[2];
-      const double tz = dL[0] * pz[0] + dL[1] * pz[1] + dL[2] * pz[2];
-      const double tn = std::hypot(tr, tz);
-      if (!(tn > 0.0)) continue;
-      // Normal into the cavity (away from the material): (-dz, dr) / |t| along the surface's
-      // direction from the axis to the rim.
-      const double nr = -tz / tn, nz = tr / tn;
-      const double g = (qr - cr) * nr + (qz - cz) * nz;
-      if (!(g < 0.0) || g < -depth_limit_) continue;
-      const auto law = penalty(-g, smoothing_);
-      const double push = k_ * area_[a] * law.force;  // along n on the node
-      f.r[in[a]] += push * nr;
-      f.z[in[a]] += push * nz;
-      for (int m = 0; m < 3; ++m) {
-        f.r[in[k + m]] -= push * L[m] * nr;
-        f.z[in[k + m]] -= push * L[m] * nz;
-      }
-      energy += k_ * area_[a] * law.energy;
-      deepest_ = std::max(deepest_, -g);
-      if (touching_ == 0 || a > last + kRegionGap) ++regions_;
-      last = a;
-      ++touching_;
-    }
+  prepare(x);
+  for (std::size_t a = 0; a < in.size(); ++a) {
+    crossings(x, a, x.r[in[a]], x.z[in[a]],
+              [&](std::size_t k, double xi, double nr, double nz, double depth) {
+                const auto law = penalty(depth, smoothing_);
+                const double push = k_ * area_[a] * law.force;  // along n on the node
+                f.r[in[a]] += push * nr;
+                f.z[in[a]] += push * nz;
+                const auto L = lagrange(xi);
+                for (int m = 0; m < 3; ++m) {
+                  f.r[in[k + m]] -= push * L[m] * nr;
+                  f.z[in[k + m]] -= push * L[m] * nz;
+                }
+                energy += k_ * area_[a] * law.energy;
+                deepest_ = std::max(deepest_, depth);
+                if (touching_ == 0 || a > last + kRegionGap) ++regions_;
+                last = a;
+                ++touching_;
+              });
   }
   return energy;
 }

@@ -15,6 +15,14 @@
 // gradient of the energy sum (k/2) A_a g^2, so the contact conserves energy and the z resultant
 // is zero (each ring pushes the other).
 //
+// The segments meet at corners (the surface is only continuous there), and each crossing must
+// belong to exactly one feature of the surface, or the force would jump as a node slides past a
+// corner: where the surface turns towards the material, a node below the corner projects into
+// both segments, and takes its gap from the one on its side of the line where the two gaps are
+// equal; where it turns away, a wedge below the corner projects into neither, and there the node's
+// gap is its distance to the corner node. The gap, and with it the force's size, is then
+// continuous as a node slides along the surface (the distance to the surface, not a sum).
+//
 // A Newton solver needs more: the plain law's stiffness jumps from 0 to k A where a node first
 // touches, and Newton's method steps back and forth across that jump without converging (measured
 // on the static branch: a cycle of three to five iterations between no contact and a few
@@ -61,6 +69,14 @@ class InnerSelfContact {
   };
   [[nodiscard]] Touch touch(const Points& x) const;
   static constexpr std::size_t kRegionGap = 4;
+  // The crossings of a free point at (r, z) (one that no segment holds): the sum of depth times
+  // the normal into the cavity over them (the push it would feel per unit k A under the plain
+  // law) and how many features of the surface it crossed.
+  struct PointCrossing {
+    double push_r = 0.0, push_z = 0.0;
+    int features = 0;
+  };
+  [[nodiscard]] PointCrossing crossing_at(const Points& x, double r, double z) const;
   [[nodiscard]] double stiffness() const { return k_; }
   [[nodiscard]] double smoothing() const { return smoothing_; }
   // Each inner node's share of the reference inner surface [m^2], in the order of inner().
@@ -72,12 +88,21 @@ class InnerSelfContact {
   double smoothing_;
   double depth_limit_;
   std::vector<double> area_;  // each inner node's share of the reference inner surface [m^2]
-  // Each segment's box of its three nodes widened by the depth limit, made once per add_forces:
-  // a node outside it cannot have crossed the segment.
-  struct Box {
+  // Per segment, made once per add_forces: the box of its three nodes widened by the depth limit
+  // (a node outside it cannot have crossed the segment) and its unit tangents at its ends.
+  struct Segment {
     double lo_r, hi_r, lo_z, hi_z;
+    double t[2][2];  // [start, end][r, z]
   };
-  mutable std::vector<Box> boxes_;
+  mutable std::vector<Segment> segments_;
+  void prepare(const Points& x) const;
+  [[nodiscard]] bool owns(const Points& x, std::size_t a, double qr, double qz,
+                          std::size_t k) const;
+  // Calls visit(k, xi, n_r, n_z, depth) for each crossing of a point at q (inner node a, whose own
+  // segments it skips; any other value of a: a point no segment holds): the feature's segment from
+  // inner node k and the point xi on it, the normal into the cavity there, the depth.
+  template <typename Visit>
+  void crossings(const Points& x, std::size_t a, double qr, double qz, Visit visit) const;
   mutable double deepest_ = 0.0;
   mutable int touching_ = 0;
   mutable int regions_ = 0;

@@ -114,6 +114,41 @@ TEST(AxiContact, CountsTheSeparateRegionsThatTouch) {
   EXPECT_EQ(contact.regions(), 2);
 }
 
+// A point slid at a fixed depth under a corner of the inner surface (a segments' shared node moved
+// off the surface, so that the surface turns there towards the material or away from it) crosses
+// one feature of the surface at a time, neither both segments at once nor neither, so the push it
+// feels changes smoothly. The nodes' forces use the same crossings.
+TEST(AxiContact, APointSlidingPastACornerCrossesOneFeatureAtATime) {
+  const Body b = make_body();
+  const auto& in = b.inner();
+  const InnerSelfContact contact(b, default_contact_stiffness(b));
+  const std::size_t j = 40;                   // the corner in[j]
+  for (const double lift : {+0.05, -0.05}) {  // into the cavity, into the material
+    SCOPED_TRACE(lift);
+    auto x = b.nodes();
+    const double tr = x.r[in[j + 1]] - x.r[in[j - 1]], tz = x.z[in[j + 1]] - x.z[in[j - 1]];
+    const double len = std::hypot(tr, tz);                         // about one segment
+    const double ur = tr / len, uz = tz / len, nr = -uz, nz = ur;  // along; into the cavity
+    x.r[in[j]] += lift * len * nr;
+    x.z[in[j]] += lift * len * nz;
+    const double depth = 0.02 * len;
+    double before = -1.0, largest_change = 0.0;
+    const int samples = 4000;
+    for (int i = 0; i <= samples; ++i) {
+      const double u = (static_cast<double>(i) / samples - 0.5) * 0.1 * len;
+      const auto c = contact.crossing_at(x, x.r[in[j]] + u * ur - depth * nr,
+                                         x.z[in[j]] + u * uz - depth * nz);
+      ASSERT_EQ(c.features, 1) << "at " << u / len << " of a segment from the corner";
+      const double size = std::hypot(c.push_r, c.push_z);
+      if (before >= 0.0) largest_change = std::max(largest_change, std::abs(size - before));
+      before = size;
+    }
+    // Over 4000 samples across a tenth of a segment (the corner's wedge is 0.3 rad wide): no step
+    // of more than a hundredth of the push.
+    EXPECT_LT(largest_change, 1e-2 * before);
+  }
+}
+
 // The regularised law: the plain one (k A d, k A d^2 / 2) at no smoothing; with a smoothing length
 // g0 the energy's derivative is the force and the force's is continuous (0 at first touch, 1 from
 // g0 on), so a Newton solver sees no jump of the stiffness.
