@@ -4,9 +4,9 @@
 // measure and where it is, axi/surface_stretch.hpp, and how many separate regions touch).
 //
 //   build/static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V_OVER_V0] [--grading G]
-//                       [--end-dp DP_OVER_P_ZOELLY] [--crease-fan FROM_RIM_mm [--crease-fan-band
-//                       mm] | --fan-layer LAYERS | --seed FROM_RIM_mm DEPTH_mm ...] THROUGH ALONG
-//                       [R_mm h_mm [PHI_deg [NU]]]
+//                       [--end-dp DP_OVER_P_ZOELLY [--through-snaps]] [--crease-fan FROM_RIM_mm
+//                       [--crease-fan-band mm] | --fan-layer LAYERS | --seed FROM_RIM_mm DEPTH_mm
+//                       ...] THROUGH ALONG [R_mm h_mm [PHI_deg [NU]]]
 // --seed may be given more than once (one rosette each; the last depth notches them all).
 #include "axi/static_branch.hpp"
 
@@ -44,6 +44,8 @@ int run(int argc, char** argv) {
   for (std::size_t i = 0; i < args.size(); ++i) {
     if (args[i] == "--no-contacts") {
       o.contacts = false;
+    } else if (args[i] == "--through-snaps") {
+      o.through_snaps = true;
     } else if (args[i] == "--seed" && i + 2 < args.size()) {
       seeds.push_back(std::stod(args[++i]) * 1e-3);
       seed_depth = std::stod(args[++i]) * 1e-3;
@@ -70,7 +72,8 @@ int run(int argc, char** argv) {
   if (pos.size() < 2) {
     std::fprintf(stderr,
                  "usage: static_branch [--no-contacts] [--csv FILE] [--step DS] [--end V/V0] "
-                 "[--grading G] [--end-dp DP] [--crease-fan FROM_RIM_mm [--crease-fan-band mm] | "
+                 "[--grading G] [--end-dp DP [--through-snaps]] [--crease-fan FROM_RIM_mm "
+                 "[--crease-fan-band mm] | "
                  "--fan-layer LAYERS | --seed FROM_RIM_mm DEPTH_mm ...] "
                  "THROUGH ALONG [R_mm h_mm "
                  "[PHI_deg [NU]]]\n");
@@ -147,6 +150,15 @@ int run(int argc, char** argv) {
                            ? "stopped at the last stable point below the end's dp: the next is "
                              "unstable under pressure control"
                            : b.stop_reason);
+  if (o.through_snaps) {
+    std::string passed;
+    for (const double m : b.passed_maxima) passed += fmt::format(" {:.5f}", m / pc);
+    fmt::print(
+        "  through snaps: passed the inverted maxima (p_Zoelly){}; the state at {:.5f} "
+        "p_Zoelly{}\n",
+        passed.empty() ? " none" : passed, b.state_dp / pc,
+        b.reached_end || b.stop_reason.empty() ? "" : fmt::format(" ({})", b.stop_reason));
+  }
   const auto biot = fem::biot_instability(body.material());
   fmt::print(
       "  the inner surface's crease measure at the last point: {:.4g} at {:.3g} mm from the rim "

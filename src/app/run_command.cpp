@@ -54,6 +54,13 @@ RunCommand::RunCommand(CLI::App& app) {
                    "every inner corner node is a crease's root (three elements at each; 0: none); "
                    "overrides numerics.fan_layer")
       ->check(CLI::Range(0, 2));
+  cmd_->add_option("--inverted-snaps", snaps_,
+                   "axisymmetric: how the preparation passes a maximum of the inverted segment "
+                   "below delta_p_j (a crease's nucleation): \"in time\" (the default: the "
+                   "suction raised from there by the dynamics) or \"along the branch\" (snapped "
+                   "at constant suction onto the branch's later part and followed on it); "
+                   "overrides protocol.inverted_snaps")
+      ->check(CLI::IsMember({"in time", "along the branch"}));
   cmd_->add_option("--output", options_.output,
                    "folder for the results (must not exist or be empty; default "
                    "runs/<case>-<date-time>)");
@@ -77,7 +84,7 @@ bool RunCommand::parsed() const { return cmd_->parsed(); }
 
 bool RunCommand::sets_up_a_run(const std::map<std::string, std::string>& values) const {
   return !case_.case_file.empty() || !values.empty() || !resolution_.empty() || !model_.empty() ||
-         !bulk_.empty() || fan_layer_ >= 0 || !options_.output.empty();
+         !bulk_.empty() || fan_layer_ >= 0 || !snaps_.empty() || !options_.output.empty();
 }
 
 int RunCommand::run(std::ostream& out, std::ostream& err, const CliHooks& hooks) const {
@@ -87,7 +94,8 @@ int RunCommand::run(std::ostream& out, std::ostream& err, const CliHooks& hooks)
     if (sets_up_a_run(case_.values) || !options.resume.empty() || options.pause_at) {
       throw config::CaseError(
           "--reanalyze reads a finished run's folder as it is: give no case file, case "
-          "values, --resolution, --model, --bulk-integration, --output, --resume or --pause-at "
+          "values, --resolution, --model, --bulk-integration, --inverted-snaps, --output, --resume "
+          "or --pause-at "
           "with it");
     }
     return reanalyze_run(reanalyze_, out);
@@ -106,6 +114,7 @@ int RunCommand::run(std::ostream& out, std::ostream& err, const CliHooks& hooks)
   if (const auto m = config::parse_model(model_)) c.numerics.model = *m;
   if (const auto b = config::parse_bulk_integration(bulk_)) c.numerics.bulk_integration = *b;
   if (fan_layer_ >= 0) c.numerics.fan_layer = fan_layer_;
+  if (const auto s = config::parse_inverted_snaps(snaps_)) c.protocol.inverted_snaps = *s;
   return run_simulation(c, options, out, err);
 }
 

@@ -35,6 +35,7 @@ class RunCommand {
   RunOptions options_;
   std::string resolution_, model_, bulk_;
   int fan_layer_ = -1;
+  std::string snaps_;  // --inverted-snaps
   std::string pause_at_;
   std::string reanalyze_;
 };

@@ -422,20 +422,27 @@ StaticBranch Tracer::run() {
   // shorter step (below).
   std::optional<Walk> before_last;
   int steps_back = 0;
+  // With through_snaps: the highest maximum of the inverted segment below end_dp passed so far.
+  std::optional<State> highest;
   // Where the last step closed a crease (its point has more separate regions of the inner surface
   // in self-contact than the one before), the secant cuts the corner between the branch with the
   // crease open and the one with it closed, and points back along the second towards the touch
-  // and onto the first: the walk goes on as at its start, from the point, under volume control
-  // towards inversion, and keeps the step only if the crease stays closed.
+  // and onto the first: the walk goes on from the point under volume control, the volume falling
+  // towards inversion, and keeps the step only if the crease stays closed. Where no step that way
+  // keeps it closed, however short (the closed branch leaves the touch with the volume rising
+  // before it turns), the volume rises instead.
   bool from_touch = false;
+  double touch_direction = -1.0;
   const auto touched = [&b] {
     return b.points.size() > 1 &&
            b.points.back().contact_regions > b.points.end()[-2].contact_regions;
   };
   while (static_cast<int>(b.points.size()) < o_.max_points) {
     State trial = s;
-    // The first step, and the first from a touch: volume control, the volume decreasing.
-    Arc arc{s.u, Vec::Zero(s.u.size()), s.v, s.q, -1.0, 0.0, ds, scale};
+    // The first step, and the first from a touch: volume control, the volume decreasing (from a
+    // touch, rising where falling found no closed state).
+    const double tv = from_touch ? touch_direction : -1.0;
+    Arc arc{s.u, Vec::Zero(s.u.size()), s.v, s.q, tv, 0.0, ds, scale};
     if (previous && !from_touch) {
       const double dv = s.v - previous->v, dq = s.q - previous->q;
       const Vec du = (s.u - previous->u) / scale;
@@ -460,6 +467,11 @@ StaticBranch Tracer::run() {
     }
     if (!iterations) {
       ds *= 0.5;
+      if (ds < o_.min_step && from_touch && touch_direction < 0.0) {
+        touch_direction = 1.0;
+        ds = taken;
+        continue;
+      }
       // Past a sharp turn (a maximum whose curvature one step spans) the secant of the last
       // step can lie more than the turn limit off the branch's tangent at its end, so that no
       // step from there, however short, is kept: the last point is taken again, with a quarter
@@ -470,6 +482,7 @@ StaticBranch Tracer::run() {
         before_last.reset();
         b.points.pop_back();
         from_touch = touched();
+        touch_direction = -1.0;
         ++steps_back;
         continue;
       }
@@ -488,6 +501,7 @@ StaticBranch Tracer::run() {
     taken = ds;
     b.points.push_back(point(s, *iterations));
     from_touch = touched();
+    touch_direction = -1.0;
     report(b, b.points.size() - 1);
     if (o_.check_folds) {
       try {
@@ -523,12 +537,18 @@ StaticBranch Tracer::run() {
                                s.q * o_.p_ref < o_.end_dp && s.v < 0.0;
     if (turned_down && inverted_minimum && previous->v < 0.0 && std::isfinite(o_.end_dp) &&
         previous->q * o_.p_ref < o_.end_dp) {
-      b.snaps_below_end = true;
-      s = *previous;
-      b.points.pop_back();
-      break;
+      if (o_.through_snaps) {
+        b.passed_maxima.push_back(previous->q * o_.p_ref);
+        if (!highest || previous->q > highest->q) highest = *previous;
+      } else {
+        b.snaps_below_end = true;
+        s = *previous;
+        b.points.pop_back();
+        break;
+      }
     }
-    if (rising_to_end && !turned_up && !positive_definite(last_stiffness_, problem_.dofs())) {
+    if (rising_to_end && !turned_up && !o_.through_snaps &&
+        !positive_definite(last_stiffness_, problem_.dofs())) {
       b.loses_stability_below_end = true;
       s = *previous;
       b.points.pop_back();
@@ -537,10 +557,17 @@ StaticBranch Tracer::run() {
     // end_dp is met on the inverted side only (V < 0: the shell through its rim's plane).
     if (rise == 1 && s.v < 0.0 && std::isfinite(o_.end_dp) && s.q * o_.p_ref >= o_.end_dp) {
       if (previous->q * o_.p_ref < o_.end_dp) {
+        const State past = s;
         b.reached_end = at_end_dp(s, *previous);
-        if (b.reached_end) b.points.back() = point(s, 0);
-        if (!b.reached_end) b.stop_reason = "no equilibrium at exactly end_dp next to the branch";
-        break;
+        if (b.reached_end && o_.through_snaps &&
+            !positive_definite(last_stiffness_, problem_.dofs())) {
+          s = past;  // an unstable crossing: the shell does not stop there
+          b.reached_end = false;
+        } else {
+          if (b.reached_end) b.points.back() = point(s, 0);
+          if (!b.reached_end) b.stop_reason = "no equilibrium at exactly end_dp next to the branch";
+          break;
+        }
       }
       // A minimum on the inverted side above end_dp: the foot of a segment that never gets
       // down to end_dp. (A segment that rose from a minimum at V > 0 and crosses into V < 0
@@ -556,10 +583,18 @@ StaticBranch Tracer::run() {
   if (!b.reached_end && b.stop_reason.empty()) {
     b.stop_reason = fmt::format("stopped after {} points", b.points.size());
   }
+  // A shell under pressure control snaps from the highest maximum passed over every state of
+  // the branch below it: a fold at one of those is never reached, and the shell snaps from that
+  // maximum in time.
+  if (!b.reached_end && highest && (!b.fold || b.points.back().dp <= highest->q * o_.p_ref)) {
+    s = *highest;
+    b.snaps_below_end = true;
+  }
   report(b, b.points.size());
   find_extrema(b, o_.p_ref);
   problem_.scatter(s.u, x_);
   b.state = x_;
+  b.state_dp = s.q * o_.p_ref;
   try {
     b.stable = positive_definite(problem_.stiffness(x_, s.q * o_.p_ref), problem_.dofs());
   } catch (const fem::InvertedElement&) {

@@ -67,6 +67,16 @@ struct BranchOptions {
   // end_dp: the branch stops at its first point (StaticBranch::end_above, the state at that
   // point's dp), from which a lower suction snaps the shell back.
   double end_dp = std::numeric_limits<double>::quiet_NaN();
+  // With end_dp: past a maximum of the inverted segment below end_dp (a limit point: a crease's
+  // nucleation, or its closed root moving on by an element), or where that segment stops being
+  // stable, go on along the branch instead of stopping: a shell under a slowly rising suction
+  // snaps there at constant dp onto the branch's later part, and is taken on to end_dp where the
+  // branch next rises through it stable under pressure control (as the trace takes it through
+  // buckling). A crossing of end_dp whose equilibrium is not stable is passed. Where the trace
+  // ends before end_dp (where no equilibrium is found, or at a fold below that maximum, a state
+  // the shell snaps over), its state is the one at the highest such maximum (snaps_below_end),
+  // from which a suction raised in time snaps the shell. The maxima passed: passed_maxima.
+  bool through_snaps = false;
   // Stop, not reaching the end, where v falls below -1 (the cavity as large as it was, on the
   // other side of the rim's plane) before the branch's first maximum: a cap that turns inside out
   // under a suction that only rises never snaps.
@@ -106,8 +116,13 @@ struct StaticBranch {
   std::string stop_reason;  // why it stopped, when it did not reach the end
   // The fold that stopped it, if one did (at the last point).
   std::optional<fem::FoldedElement> fold;
-  // The nodes' positions at the last point (at end_dp when that ended it).
+  // With BranchOptions::through_snaps, the suctions of the inverted segment's maxima below end_dp
+  // that the trace went past [Pa], in order.
+  std::vector<double> passed_maxima;
+  // The nodes' positions at the last point (at end_dp when that ended it; with through_snaps and
+  // end_dp not reached, at the highest maximum passed), and the suction there [Pa].
   Points state;
+  double state_dp = std::numeric_limits<double>::quiet_NaN();
   // Whether that state is stable under pressure control: its stiffness at fixed dp positive
   // definite.
   bool stable = false;

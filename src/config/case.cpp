@@ -135,6 +135,7 @@ constexpr std::string_view kBulkKey = "bulk_integration";
 constexpr std::string_view kLawKey = "law";
 constexpr std::string_view kMeshKey = "mesh";
 constexpr std::string_view kFanLayerKey = "fan_layer";
+constexpr std::string_view kInvertedSnapsKey = "inverted_snaps";
 constexpr std::string_view kTitleKey = "title";
 
 constexpr std::string_view kDefaultCase =
@@ -197,6 +198,7 @@ std::string keys_of(std::string_view table) {
                        kFanLayerKey);
   if (table == "shell") out += fmt::format(", {}", kMeshKey);
   if (table == "material") out += fmt::format(", {}", kLawKey);
+  if (table == "protocol") out += fmt::format(", {}", kInvertedSnapsKey);
   return out;
 }
 
@@ -299,6 +301,11 @@ class Reader {
       }
       if (table_name == "numerics" && name == kModelKey) {
         c.numerics.model = parsed_string(node, key, table_name, parse_model, kModelChoices);
+        continue;
+      }
+      if (table_name == "protocol" && name == kInvertedSnapsKey) {
+        c.protocol.inverted_snaps =
+            parsed_string(node, key, table_name, parse_inverted_snaps, kInvertedSnapsChoices);
         continue;
       }
       if (table_name == "material" && name == kLawKey) {
@@ -574,6 +581,17 @@ std::string_view to_string(Resolution r) {
   return "default";
 }
 
+std::optional<InvertedSnaps> parse_inverted_snaps(std::string_view text) {
+  for (const auto s : {InvertedSnaps::InTime, InvertedSnaps::AlongBranch}) {
+    if (text == to_string(s)) return s;
+  }
+  return std::nullopt;
+}
+
+std::string_view to_string(InvertedSnaps s) {
+  return s == InvertedSnaps::AlongBranch ? "along the branch" : "in time";
+}
+
 std::optional<Model> parse_model(std::string_view text) {
   for (const auto m : {Model::ThreeD, Model::Axisymmetric}) {
     if (text == to_string(m)) return m;
@@ -657,6 +675,9 @@ std::string to_toml(const Case& c) {
   }
   if (c.material.law != Law::NeoHookean) {
     tables["material"].insert("law", std::string(to_string(c.material.law)));
+  }
+  if (c.protocol.inverted_snaps != InvertedSnaps::InTime) {
+    tables["protocol"].insert("inverted_snaps", std::string(to_string(c.protocol.inverted_snaps)));
   }
   auto& shell = tables["shell"];
   if (!c.shell.mesh.empty()) shell.insert("mesh", c.shell.mesh);

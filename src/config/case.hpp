@@ -78,9 +78,20 @@ struct Gas {
 
 // The pressure difference (outside minus inside) held at release, either absolute or as a
 // fraction of Zoelly's buckling pressure p_c of the case (resolved by the theory library).
+// How the axisymmetric preparation passes a maximum of the inverted segment below delta_p_j
+// (a crease's nucleation): in time, the suction raised from that maximum by the dynamics; or
+// along the branch, the shell snapping at constant suction onto the branch's later part and
+// followed on it to delta_p_j (axi::BranchOptions::through_snaps).
+enum class InvertedSnaps { InTime, AlongBranch };
+std::string_view to_string(InvertedSnaps s);
+// "in time", "along the branch"; nullopt for anything else.
+std::optional<InvertedSnaps> parse_inverted_snaps(std::string_view text);
+inline constexpr std::string_view kInvertedSnapsChoices = R"("in time" or "along the branch")";
+
 struct Protocol {
   std::optional<double> delta_p_j;  // [Pa], when given absolutely
   double delta_p_j_over_pc = 0.0;   // used when delta_p_j is not given
+  InvertedSnaps inverted_snaps = InvertedSnaps::InTime;
 };
 
 enum class Resolution { Coarse, Default, Fine };

@@ -125,10 +125,11 @@ void AxiShell::start_held(double damping) {
 }
 
 std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(
-    double dp, double p_ref, const std::function<void()>& at_point) {
+    double dp, double p_ref, bool through_snaps, const std::function<void()>& at_point) {
   axi::BranchOptions o;
   o.p_ref = p_ref;
   o.end_dp = dp;
+  o.through_snaps = through_snaps;
   o.stop_inverted_without_buckling = true;
   o.end_volume = -std::numeric_limits<double>::max();  // only end_dp ends it
   if (at_point) o.progress = [&](const axi::BranchPoint&) { at_point(); };
@@ -136,7 +137,7 @@ std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(
   dynamics_.mutable_positions() = b.state;
   dynamics_.zero_velocities();
   const auto& last = b.points.back();
-  if (b.fold) {
+  if (b.fold && !b.snaps_below_end) {  // (a fold the shell snaps over does not stop it)
     throw fem::FoldedElement(
         fmt::format("on the quasi-static buckling branch at V / V0 = {:.4f}, delta_p = {:.0f} Pa "
                     "({:.3f} p_c), on the way to {:.0f} Pa",
@@ -148,11 +149,12 @@ std::optional<ShellModel::QuasiStaticBuckle> AxiShell::buckle_quasi_statically(
                            .snaps = b.snaps_below_end || b.loses_stability_below_end,
                            .loses_stability = b.loses_stability_below_end,
                            .stable = b.stable,
-                           .dp = last.dp,
+                           .dp = b.state_dp,
                            .p_c = b.p_c,
                            .p_minus = b.p_minus,
                            .p_hold = b.p_hold,
-                           .note = b.stop_reason};
+                           .note = b.stop_reason,
+                           .passed_maxima = b.passed_maxima};
 }
 
 void AxiShell::start_on_plate(core::RigidBody& container, double mu, double damping) {

@@ -31,7 +31,7 @@ class AxiShell final : public ShellModel, public ShellReport {
 
   void start_held(double damping) override;
   std::optional<QuasiStaticBuckle> buckle_quasi_statically(
-      double dp, double p_ref, const std::function<void()>& at_point) override;
+      double dp, double p_ref, bool through_snaps, const std::function<void()>& at_point) override;
   void start_on_plate(core::RigidBody& container, double mu, double damping) override;
   void set_damping(double c) override { dynamics_.set_damping(c); }
   void step() override { dynamics_.step(); }

@@ -71,6 +71,13 @@ Numerics resolve_numerics(const config::Case& c) {
                     "numerics.model = \"axisymmetric\"",
                     c.source));
   }
+  if (c.protocol.inverted_snaps != config::InvertedSnaps::InTime &&
+      n.model != config::Model::Axisymmetric) {
+    throw config::CaseError(fmt::format(
+        "{}: protocol.inverted_snaps = \"{}\" follows the axisymmetric model's pressure-volume "
+        "branch: run it with numerics.model = \"axisymmetric\"",
+        c.source, to_string(c.protocol.inverted_snaps)));
+  }
   for (const auto& seed : {c.numerics.crease_seed, c.numerics.second_crease_seed}) {
     if (seed) n.axi_crease_seeds.push_back(*seed);
   }
@@ -327,7 +334,9 @@ std::optional<double> Popper::buckle(Preparation& prep, const Progress& progress
     const auto at_point = [&] {
       if (progress) progress("buckle (branch)", 0.0, 0.0);
     };
-    if (const auto qs = m.buckle_quasi_statically(delta_p_j_, pc, at_point)) {
+    if (const auto qs = m.buckle_quasi_statically(
+            delta_p_j_, pc, case_.protocol.inverted_snaps == config::InvertedSnaps::AlongBranch,
+            at_point)) {
       gas_.hold(qs->dp);
       if (!buckled_quasi_statically(prep, *qs, pc)) return std::nullopt;
       return qs->dp;
@@ -401,6 +410,17 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
                        qs.dp, qs.dp / pc)
                  : fmt::format("to its inverted equilibrium at delta_p_j, {:.0f} Pa ({:.2f} p_c)",
                                qs.dp, qs.dp / pc);
+  // Along the branch (protocol.inverted_snaps): the maxima it snapped past, and where it ended
+  // before delta_p_j, why.
+  std::string passed;
+  for (const double p : qs.passed_maxima) {
+    passed += fmt::format("{}{:.3f}", passed.empty() ? "" : ", ", p / pc);
+  }
+  if (!passed.empty()) {
+    passed = fmt::format(
+        " (snapped along the branch past the inverted segment's maxima at {} p_c{}{})", passed,
+        qs.reached ? "" : "; the branch then ended: ", qs.reached ? "" : qs.note);
+  }
   const auto hold =
       std::isfinite(qs.p_hold)
           ? fmt::format("holds fully inverted down to {:.0f} Pa ({:.3f} p_c)", qs.p_hold,
@@ -417,9 +437,9 @@ bool Popper::buckled_quasi_statically(Preparation& prep, const ShellModel::Quasi
                 settings_.buckle_factor)
           : std::string();
   prep.message = fmt::format(
-      "inverted along the quasi-static pressure-volume branch {}: it buckles at {:.0f} Pa ({:.3f} "
-      "p_c){}, {} and has no buckled state below {:.0f} Pa ({:.3f} p_c)",
-      where, qs.p_c, qs.p_c / pc, beyond, hold, qs.p_minus, qs.p_minus / pc);
+      "inverted along the quasi-static pressure-volume branch {}{}: it buckles at {:.0f} Pa "
+      "({:.3f} p_c){}, {} and has no buckled state below {:.0f} Pa ({:.3f} p_c)",
+      where, passed, qs.p_c, qs.p_c / pc, beyond, hold, qs.p_minus, qs.p_minus / pc);
   return true;
 }
 

@@ -65,7 +65,9 @@ class ShellModel {
   // at the foot of that segment (QuasiStaticBuckle::dp), for the dynamics to lower the suction
   // from there; where the segment turns down at a maximum on the way up to dp, or stops being
   // stable on the way, at that maximum or its last stable state, for the dynamics to snap it
-  // under that suction and raise the suction from there. Throws fem::FoldedElement when the
+  // under that suction and raise the suction from there; with through_snaps, past such maxima
+  // along the branch to its next stable equilibrium at dp (axi::BranchOptions::through_snaps), and
+  // at the highest of them where the branch ends before. Throws fem::FoldedElement when the
   // branch folds an element before it gets there.
   struct QuasiStaticBuckle {
     bool reached = false;  // an end state was found (at dp, or at the foot above it)
@@ -82,13 +84,15 @@ class ShellModel {
     // The branch's buckling maximum, its lowest suction after it (below which no buckled state
     // is left) and the lowest suction that holds the fully inverted shell [Pa] (NaN: not found).
     double p_c = 0.0, p_minus = 0.0, p_hold = 0.0;
-    std::string note;  // why it stopped, when it did not reach dp
+    std::string note;                   // why it stopped, when it did not reach dp
+    std::vector<double> passed_maxima;  // with through_snaps: the maxima gone past [Pa]
   };
   // `at_point` is called at each converged point of the branch (a stop hook may throw from it).
   virtual std::optional<QuasiStaticBuckle> buckle_quasi_statically(
-      double dp, double p_ref, const std::function<void()>& at_point) {
+      double dp, double p_ref, bool through_snaps, const std::function<void()>& at_point) {
     (void)dp;
     (void)p_ref;
+    (void)through_snaps;
     (void)at_point;
     return std::nullopt;
   }

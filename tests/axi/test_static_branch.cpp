@@ -115,7 +115,8 @@ TEST(StaticBranch, BelowTheInvertedSegmentItStopsAtItsFoot) {
 // down at a maximum of dp below it: a limit point, where a shell under pressure control snaps.
 // Aimed at 1.4 p_c, the branch stops there, or at the last point before it that is stable under
 // pressure control: the same branch traced on without an end pressure turns down within the
-// next few points, less than 0.1 % above it.
+// next few points, less than 0.1 % above it. Taken through the snap, it comes back to that
+// maximum where the branch beyond it folds below it.
 TEST(StaticBranch, StopsAtAMaximumOfTheInvertedSegmentBelowTheSuctionAsked) {
   const Body body = make_body(42);
   auto o = options(-1.2);
@@ -140,6 +141,19 @@ TEST(StaticBranch, StopsAtAMaximumOfTheInvertedSegmentBelowTheSuctionAsked) {
   while (top + 1 < full.points.size() && full.points[top + 1].dp > full.points[top].dp) ++top;
   EXPECT_LE(top, k + 3);
   EXPECT_LT(full.points[top].dp, 1.001 * at);
+  // Through the snaps (BranchOptions::through_snaps) the trace goes on past that maximum. Beyond
+  // it this branch folds an element at a lower suction, a state a shell under pressure control
+  // snaps over: the trace's state is the one at the maximum passed.
+  o.through_snaps = true;
+  const auto through = trace_static_branch(body, o);
+  ASSERT_EQ(through.passed_maxima.size(), 1u) << through.stop_reason;
+  EXPECT_GE(through.passed_maxima[0], at);
+  EXPECT_LT(through.passed_maxima[0], 1.001 * at);
+  EXPECT_FALSE(through.reached_end);
+  EXPECT_TRUE(through.snaps_below_end);
+  ASSERT_TRUE(through.fold) << through.stop_reason;
+  EXPECT_LT(through.points.back().dp, through.passed_maxima[0]);
+  EXPECT_EQ(through.state_dp, through.passed_maxima[0]);
 }
 
 // The (25, 2.0) mm cap with every inner corner node a crease's root (MeshSpec::fan_layer), at

@@ -260,6 +260,17 @@ TEST(CaseFile, BulkIntegrationIsFullOrReduced) {
   expect_error(kMinimal + "[numerics]\nbulk = \"full\"\n", {"bulk_integration"});
 }
 
+TEST(CaseFile, InvertedSnapsAreTakenInTimeOrAlongTheBranch) {
+  EXPECT_EQ(parse_case(kMinimal, "case.toml").protocol.inverted_snaps, InvertedSnaps::InTime);
+  EXPECT_EQ(
+      parse_case(kMinimal + "[protocol]\ninverted_snaps = \"along the branch\"\n", "case.toml")
+          .protocol.inverted_snaps,
+      InvertedSnaps::AlongBranch);
+  expect_error(
+      kMinimal + "[protocol]\ninverted_snaps = \"quasi-static\"\n",
+      {"case.toml:", "protocol.inverted_snaps must be \"in time\" or \"along the branch\""});
+}
+
 TEST(CaseFile, ACreaseFanIsALengthOfTheAxisymmetricMesh) {
   const auto c = parse_case(
       kMinimal + "[numerics]\nmodel = \"axisymmetric\"\ncrease_fan = \"2.15 mm\"\n", "case.toml");
@@ -349,7 +360,9 @@ TEST(CaseFile, WrittenInSIAndReadBackTheSame) {
   c.numerics.model = Model::Axisymmetric;
   c.numerics.end_time = 0.3;
   c.numerics.bulk_integration = BulkIntegration::Full;
+  c.protocol.inverted_snaps = InvertedSnaps::AlongBranch;
   const auto r = parse_case(to_toml(c), "written.toml");
+  EXPECT_EQ(r.protocol.inverted_snaps, InvertedSnaps::AlongBranch);
   EXPECT_EQ(r.numerics.model, Model::Axisymmetric);
   EXPECT_EQ(r.numerics.bulk_integration, BulkIntegration::Full);
   EXPECT_FALSE(parse_case(to_toml(parse_case(kMinimal, "case.toml")), "again.toml")

@@ -45,6 +45,20 @@ TEST(Numerics, ACreaseFanIsTheAxisymmetricModels) {
   EXPECT_EQ(resolve_numerics(c).axi_crease_fan, 2e-3);
 }
 
+// And snapping along the pressure-volume branch, which only that model traces.
+TEST(Numerics, InvertedSnapsAlongTheBranchAreTheAxisymmetricModels) {
+  auto c = config::default_case();
+  c.protocol.inverted_snaps = config::InvertedSnaps::AlongBranch;
+  try {
+    (void)resolve_numerics(c);
+    FAIL() << "the 3D model took snaps along the branch";
+  } catch (const config::CaseError& e) {
+    EXPECT_NE(std::string(e.what()).find("protocol.inverted_snaps"), std::string::npos) << e.what();
+  }
+  c.numerics.model = config::Model::Axisymmetric;
+  EXPECT_NO_THROW((void)resolve_numerics(c));
+}
+
 // A seeded crease too.
 TEST(Numerics, ASeededCreaseIsTheAxisymmetricModels) {
   auto c = config::default_case();
