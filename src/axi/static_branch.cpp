@@ -424,6 +424,7 @@ StaticBranch Tracer::run() {
   int steps_back = 0;
   // With through_snaps: the highest maximum of the inverted segment below end_dp passed so far.
   std::optional<State> highest;
+  std::vector<std::size_t> passed_at;  // the points of b.passed_maxima
   // Where the last step closed a crease (its point has more separate regions of the inner surface
   // in self-contact than the one before), the secant cuts the corner between the branch with the
   // crease open and the one with it closed, and points back along the second towards the touch
@@ -538,6 +539,13 @@ StaticBranch Tracer::run() {
     if (turned_down && inverted_minimum && previous->v < 0.0 && std::isfinite(o_.end_dp) &&
         previous->q * o_.p_ref < o_.end_dp) {
       if (o_.through_snaps) {
+        // (A maximum passed again after the walk took points again replaces the first passage.)
+        const std::size_t at = b.points.size() - 2;
+        while (!passed_at.empty() && passed_at.back() >= at) {
+          passed_at.pop_back();
+          b.passed_maxima.pop_back();
+        }
+        passed_at.push_back(at);
         b.passed_maxima.push_back(previous->q * o_.p_ref);
         if (!highest || previous->q > highest->q) highest = *previous;
       } else {
