@@ -170,6 +170,8 @@ void InnerSelfContact::crossings(const Points& x, std::size_t a, double qr, doub
   for (std::size_t j = 2; j + 2 < n; j += 2) {
     if (a >= j - 2 && a <= j + 2) continue;
     const double dr = qr - x.r[in[j]], dz = qz - x.z[in[j]];
+    // (Outside the corner's box no hypot: this runs for every node and corner at every step.)
+    if (std::abs(dr) > depth_limit_ || std::abs(dz) > depth_limit_) continue;
     const double d = std::hypot(dr, dz);
     if (!(d > 0.0) || d > depth_limit_) continue;
     const double* ta = segments_[j / 2 - 1].t[1];
